@@ -1,0 +1,56 @@
+#pragma once
+// 2-D textures with immutable storage, and a framebuffer that bundles a set of them.
+
+#include <initializer_list>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "render/gl/resource.h"
+
+namespace lgh::gl {
+
+class Texture2D {
+ public:
+  Texture2D() = default;
+  Texture2D(int width, int height, GLenum internalFormat, int mipLevels = 1);
+
+  GLuint id() const { return handle_.id(); }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  GLenum format() const { return format_; }
+  explicit operator bool() const { return bool(handle_); }
+
+  void setFilter(GLenum minFilter, GLenum magFilter);
+  void setWrap(GLenum wrap);
+  void upload(GLenum format, GLenum type, const void* pixels);
+  void clear(const glm::vec4& value);
+  void clearUint(GLuint value);
+  // Reads level 0 as RGBA floats, rows bottom-up as GL stores them.
+  std::vector<glm::vec4> readRGBA() const;
+  std::vector<GLuint> readUint() const;  // for R32UI textures
+
+  void bindTexture(GLuint unit) const;
+  void bindImage(GLuint unit, GLenum access) const;
+
+ private:
+  Handle<DeleteTexture> handle_;
+  int width_ = 0, height_ = 0;
+  GLenum format_ = 0;
+};
+
+class Framebuffer {
+ public:
+  Framebuffer() = default;
+  // Attaches colour textures in order (location i = GL_COLOR_ATTACHMENT0 + i) and an optional depth texture.
+  Framebuffer(std::initializer_list<const Texture2D*> colors, const Texture2D* depth);
+
+  GLuint id() const { return handle_.id(); }
+  void bind() const;
+
+ private:
+  FramebufferHandle handle_;
+  int width_ = 0, height_ = 0;
+};
+
+}  // namespace lgh::gl

@@ -1,0 +1,32 @@
+#include "render/passes/composite_pass.h"
+
+#include "render/gl/debug.h"
+#include "shared/bindings.h"
+
+namespace lgh {
+
+CompositePass::CompositePass()
+    : program_(gl::Program::compute("composite.comp")),
+      black_(1, 1, GL_RGBA32F),
+      white_(1, 1, GL_RGBA32F),
+      counter_(sizeof(GLuint)) {
+  black_.clear(glm::vec4(0.0f));
+  white_.clear(glm::vec4(1.0f));
+}
+
+unsigned CompositePass::execute(const GBuffer& gbuffer, const gl::Texture2D& direct, const gl::Texture2D* indirect,
+                                const gl::Texture2D* visibility, gl::Texture2D& out) {
+  gbuffer.bindForReading();
+  direct.bindTexture(4);
+  (indirect ? *indirect : black_).bindTexture(5);
+  (visibility ? *visibility : white_).bindTexture(6);
+  out.bindImage(0, GL_WRITE_ONLY);
+  counter_.clear();
+  counter_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
+  glMemoryBarrier(GL_ALL_BARRIER_BITS);
+  gl::checkErrors("composite pass");
+  return counter_.download<GLuint>(1)[0];
+}
+
+}  // namespace lgh

@@ -1,0 +1,22 @@
+#pragma once
+// Direct light from the scene's punctual lights, exact: one ray-traced shadow ray per light per pixel.
+//   in:  GBuffer, SceneGpu (punctual lights, BVH)
+//   out: direct radiance (RGBA32F)
+
+#include "render/gl/program.h"
+#include "render/gl/texture.h"
+#include "render/passes/gbuffer_pass.h"
+#include "render/scene/scene_gpu.h"
+
+namespace lgh {
+
+class DirectLightPass {
+ public:
+  DirectLightPass();
+  void execute(const SceneGpu& scene, const GBuffer& gbuffer, bool shadows, gl::Texture2D& out) const;
+
+ private:
+  gl::Program program_;
+};
+
+}  // namespace lgh

@@ -1,0 +1,54 @@
+#pragma once
+// The scene on the GPU: vertex streams for rasterization (drawn per material, since core GL cannot
+// index samplers per triangle), material and punctual-light SSBOs, textures, and the BVH for compute
+// shaders. Built once per scene; passes only bind it.
+
+#include <vector>
+
+#include "render/gl/buffer.h"
+#include "render/gl/texture.h"
+#include "render/scene/bvh.h"
+#include "render/scene/scene.h"
+#include "shared/scene_types.h"
+
+namespace lgh {
+
+class SceneGpu {
+ public:
+  explicit SceneGpu(const Scene& scene);
+
+  // Binds the BVH, materials and punctual lights at their LGH_BINDING_* slots for compute shaders.
+  void bindForCompute() const;
+  // Issues one draw per material range; `onMaterial` binds that material's textures and uniforms.
+  template <typename OnMaterial>
+  void drawByMaterial(OnMaterial&& onMaterial) const {
+    glBindVertexArray(vertexArray_.id());
+    for (const MaterialRange& range : scene_.materialRanges) {
+      onMaterial(range.material, materials_[range.material]);
+      glDrawElements(GL_TRIANGLES, GLsizei(range.triangleCount * 3), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(size_t(range.firstTriangle) * 3 * sizeof(std::uint32_t)));
+    }
+    glBindVertexArray(0);
+  }
+  // The GL texture for a scene texture index, or a 1x1 white texture for -1.
+  const gl::Texture2D& texture(int index) const;
+
+  const Scene& scene() const { return scene_; }
+  const Bvh& bvh() const { return bvh_; }
+  const std::vector<gpu::GpuPunctualLight>& punctualLights() const { return lights_; }
+  double bvhBuildMs() const { return bvhBuildMs_; }
+
+ private:
+  const Scene& scene_;
+  Bvh bvh_;
+  double bvhBuildMs_ = 0;
+  std::vector<gpu::GpuMaterial> materials_;
+  std::vector<gpu::GpuPunctualLight> lights_;
+  gl::Buffer positions_, normals_, texcoords_, indices_;
+  gl::VertexArrayHandle vertexArray_;
+  gl::Buffer bvhNodes_, bvhTriangles_, materialBuffer_, lightBuffer_;
+  std::vector<gl::Texture2D> textures_;
+  gl::Texture2D white_;
+};
+
+}  // namespace lgh

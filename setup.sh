@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# One entry point for a fresh Debian 12 machine. Installs missing packages (apt-get, as root or via
+# sudo), configures and builds in ./build (Release), then:
+#   ./setup.sh render [lgh-render options]   renders the default scene to cornell_box.png
+#   ./setup.sh test   [ctest options]        runs the whole test suite
+#   ./setup.sh build                         only installs and builds
+# Every step is idempotent: a second run installs nothing and rebuilds only what changed.
+set -euo pipefail
+cd "$(dirname "$0")"
+
+packages=(
+  cmake g++ make pkg-config python3-glad
+  libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev libglfw3-dev
+  libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libopenimageio-dev libcli11-dev
+  libgtest-dev
+)
+
+install_missing() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null | grep -qx installed || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "setup.sh: installing ${missing[*]}"
+  local sudo=()
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "setup.sh: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+    sudo=(sudo)
+  fi
+  "${sudo[@]}" apt-get update -qq
+  "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build build -j"$(nproc)"
+}
+
+command=${1:-}
+shift || true
+case "$command" in
+  render)
+    install_missing && build
+    ./build/lgh-render data/cornell_box.gltf -o cornell_box.png "$@" ;;
+  test)
+    install_missing && build
+    ctest --test-dir build --output-on-failure -j"$(nproc)" "$@" ;;
+  build)
+    install_missing && build ;;
+  *)
+    echo "usage: ./setup.sh render [lgh-render options] | ./setup.sh test [ctest options] | ./setup.sh build" >&2
+    exit 2 ;;
+esac
