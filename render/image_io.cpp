@@ -58,12 +58,21 @@ glm::vec3 displayEncode(const glm::vec3& linear, float exposureEV, ToneMap toneM
   return {srgbEncode(c.r), srgbEncode(c.g), srgbEncode(c.b)};
 }
 
-void writeImage(const std::filesystem::path& path, const ImageRGBA& image, float exposureEV, ToneMap toneMap) {
+void checkImagePath(const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);
-  const bool hdr = isHdrFormat(path);
-  if (!hdr && ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".tif" && ext != ".tiff" && ext != ".bmp")
+  if (!isHdrFormat(path) && ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".tif" && ext != ".tiff" &&
+      ext != ".bmp")
     throw std::runtime_error(path.string() + ": unsupported image format '" + ext +
                              "' (use .exr, .hdr or .pfm for linear HDR; .png, .jpg, .tif or .bmp for display)");
+  const std::filesystem::path folder = path.parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder))
+    throw std::runtime_error(path.string() + ": the folder " + folder.string() + " does not exist");
+}
+
+void writeImage(const std::filesystem::path& path, const ImageRGBA& image, float exposureEV, ToneMap toneMap) {
+  checkImagePath(path);
+  const std::string ext = lowerExtension(path);
+  const bool hdr = isHdrFormat(path);
   const size_t count = size_t(image.width) * size_t(image.height);
   const int channels = 3;
   std::vector<float> linear;

@@ -23,6 +23,9 @@ struct ImageRGBA {
 ImageRGBA fromGLRows(int width, int height, std::vector<glm::vec4> bottomUp);
 
 bool isHdrFormat(const std::filesystem::path& path);
+// Throws std::runtime_error("<path>: <problem>") if `path` has an unsupported extension or its folder
+// does not exist; called before rendering so a typo costs milliseconds, not a render.
+void checkImagePath(const std::filesystem::path& path);
 // Throws std::runtime_error("<path>: <problem>") on an unknown extension or a write failure. The file
 // is written next to its destination and renamed into place, so a failed write never leaves a
 // half-written image where a good one was.

@@ -56,6 +56,8 @@ int run(int argc, char** argv) {
     aovs[lgh::parseAov(spec.substr(0, eq))] = spec.substr(eq + 1);
   }
   const lgh::ToneMap toneMap = lgh::parseToneMap(settings.toneMap);
+  lgh::checkImagePath(output);
+  for (const auto& [aov, path] : aovs) lgh::checkImagePath(path);
 
   const auto t0 = Clock::now();
   const lgh::Scene scene = lgh::loadScene(scenePath);

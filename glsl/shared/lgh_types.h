@@ -1,0 +1,47 @@
+// The lighting grid hierarchy as the GPU holds it: input lights S0, grid lights of all levels, and
+// the per-level table the light pass reads. Written by render/passes/lgh_build_pass.cpp.
+#ifndef LGH_LGH_TYPES_H
+#define LGH_LGH_TYPES_H
+#include "shared/gpu_prelude.h"
+
+GPU_NAMESPACE_BEGIN
+
+GPU_CONST uint kLightOriented = 1u;  // GpuLight::flags: a cosine emitter with normal `normalOct`
+
+// An input light (S0): a VPL, an emitter sample or a glTF point light. 32 bytes, so 4M lights fit one
+// 128 MiB shader storage block.
+GPU_STRUCT(GpuLight) {
+  vec3 position;
+  uint normalOct;   // octahedral unit normal, snorm16 x 2 (see shared/octahedral.h); ignored for omni lights
+  vec3 intensity;   // RGB, W/sr (peak intensity I = Phi/pi for a cosine emitter)
+  uint flags;       // kLightOriented
+};
+GPU_CHECK_SIZE(GpuLight, 32);
+
+// A grid light of level >= 1 (or an S0 light rendered at level 0). 64 bytes.
+GPU_STRUCT(GpuGridLight) {
+  vec3 position;      // illumination centre
+  uint level;         // 0 for S0, 1..L for grid levels
+  vec3 intensity;     // summed RGB intensity (energy kept)
+  float omniFraction; // share of omni emission O/W
+  vec3 variance;      // per-axis variance of the centre, >= 0
+  uint vertexKey;     // linear index of its vertex at its level (x + n(y + n z), n = vertices per axis)
+  vec3 meanNormal;    // N/W, |m| <= 1
+  uint pad;
+};
+GPU_CHECK_SIZE(GpuGridLight, 64);
+GPU_CHECK_OFFSET(GpuGridLight, meanNormal, 48);
+
+// Grid geometry and the fixed-point scale of one build (uniform block for the build kernels).
+GPU_STRUCT(LghGridParams) {
+  vec4 originAndTopCell;   // xyz: min corner of the top cell, w: H
+  uvec4 levelsAndCounts;   // x: L, y: level being built, z: light count, w: vertices per axis at that level
+  vec4 cellSizeAndScale;   // x: h of the level being built, y: fixed-point scale, zw: unused
+  uvec4 table;             // x: hash capacity (power of two), y: capacity - 1, z: unique-key stop count, w: unused
+};
+GPU_CHECK_SIZE(LghGridParams, 64);
+
+GPU_CONST uint kEmptyKey = 0xffffffffu;
+
+GPU_NAMESPACE_END
+#endif

@@ -1,0 +1,346 @@
+#include "render/passes/lgh_build_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "render/gl/debug.h"
+#include "shared/bindings.h"
+#include "shared/octahedral.h"
+
+namespace lgh {
+namespace {
+
+constexpr unsigned kLocalSize = 256;
+constexpr size_t kLightChunkGranularity = 1024;  // chunk offsets stay multiples of 32 KiB (any SSBO alignment)
+constexpr double kFixedPointHeadroom = 4611686018427387904.0;  // 2^62: sums stay below 2^63
+
+size_t nextPowerOfTwo(size_t v) {
+  size_t p = 1;
+  while (p < v) p <<= 1;
+  return p;
+}
+
+size_t verticesPerAxis(const GridGeometry& grid, int level) { return size_t(grid.cellsPerAxis(level)) + 1; }
+size_t denseVertexCount(const GridGeometry& grid, int level) {
+  const size_t n = verticesPerAxis(grid, level);
+  return n * n * n;
+}
+
+// Inverse of the ordered-bits mapping in lgh_bounds.comp.
+float fromOrderedBits(GLuint u) {
+  const GLuint bits = (u & 0x80000000u) ? (u & 0x7fffffffu) : ~u;
+  float f;
+  std::memcpy(&f, &bits, sizeof f);
+  return f;
+}
+
+std::string mib(size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
+
+}  // namespace
+
+std::vector<gpu::GpuGridLight> GpuHierarchy::downloadLevel(int level) const {
+  if (level < 1 || size_t(level) >= levels.size()) return {};
+  return gridLights.download<gpu::GpuGridLight>(levels[size_t(level)].count, levels[size_t(level)].offset);
+}
+
+LghBuildPass::LghBuildPass(bool floatAtomicsAvailable)
+    : floatAtomicsAvailable_(floatAtomicsAvailable),
+      bounds_(gl::Program::compute("lgh_bounds.comp")),
+      insertFromLights_(gl::Program::compute("lgh_insert_keys.comp")),
+      insertFromGridLights_(gl::Program::compute("lgh_insert_keys.comp", {{"LGH_FROM_GRID_LIGHTS", "1"}})),
+      compactFlags_(gl::Program::compute("lgh_compact.comp", {{"LGH_COMPACT_FLAGS", "1"}})),
+      compactWrite_(gl::Program::compute("lgh_compact.comp")),
+      scatterFixed_(gl::Program::compute("lgh_scatter.comp")),
+      finalizeFixed_(gl::Program::compute("lgh_finalize.comp")),
+      gather_(gl::Program::compute("lgh_gather.comp")),
+      gridParams_(sizeof(gpu::LghGridParams)),
+      counters_(4 * sizeof(GLuint)),
+      boundsResult_(16 * sizeof(GLuint)) {
+  if (floatAtomicsAvailable_) {
+    scatterFloat_ = gl::Program::compute("lgh_scatter.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
+    finalizeFloat_ = gl::Program::compute("lgh_finalize.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
+  }
+  GLint64 maxBlock = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+  maxBlockBytes_ = size_t(std::max<GLint64>(maxBlock, 1 << 24));
+}
+
+template <typename Fn>
+void LghBuildPass::forEachLightChunk(const gl::Buffer& lights, size_t lightCount, Fn&& fn) {
+  const size_t blockLights = maxBlockBytes_ / sizeof(gpu::GpuLight);
+  size_t chunk = maxLightsPerDispatch_ ? std::min(maxLightsPerDispatch_, blockLights) : blockLights;
+  chunk = std::max(kLightChunkGranularity, chunk / kLightChunkGranularity * kLightChunkGranularity);
+  for (size_t first = 0; first < lightCount; first += chunk) {
+    const size_t count = std::min(chunk, lightCount - first);
+    lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight),
+                     count * sizeof(gpu::GpuLight));
+    fn(first, count);
+  }
+}
+
+void LghBuildPass::setGridParams(const GridGeometry& grid, int level, size_t capacity, size_t stopAt, double scale) {
+  gpu::LghGridParams p{};
+  p.originAndTopCell = glm::vec4(glm::vec3(grid.origin), float(grid.topCellSize));
+  p.levelsAndCounts = glm::uvec4(unsigned(grid.levels), unsigned(level), 0u, unsigned(verticesPerAxis(grid, level)));
+  p.cellSizeAndScale = glm::vec4(float(grid.cellSize(level)), float(scale), 0.0f, 0.0f);
+  p.table = glm::uvec4(unsigned(capacity), unsigned(capacity - 1), unsigned(std::min<size_t>(stopAt, 0xffffffffu)), 0u);
+  gridParams_.update(&p, sizeof p);
+  gridParams_.bindBase(GL_UNIFORM_BUFFER, LGH_UBO_PASS);
+}
+
+LghBuildPass::Bounds LghBuildPass::computeBounds(const gl::Buffer& lights, size_t lightCount) {
+  // Start values: min slots at the ordered bits of +inf's neighbour (0xffffffff), max slots at 0.
+  GLuint init[16] = {};
+  for (int i : {0, 1, 2, 6, 7, 8}) init[i] = 0xffffffffu;
+  boundsResult_.update(init, sizeof init);
+  boundsResult_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+  forEachLightChunk(lights, lightCount, [&](size_t, size_t count) {
+    bounds_.set("lightCount", GLuint(count));
+    bounds_.dispatch1D(count, kLocalSize);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  });
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  const auto r = boundsResult_.download<GLuint>(16);
+  Bounds b;
+  b.litCount = r[13];
+  const int base = b.litCount > 0 ? 0 : 6;  // no lit light: fall back to all lights, as lgh::makeGrid does
+  for (int a = 0; a < 3; ++a) {
+    b.lower[a] = fromOrderedBits(r[size_t(base + a)]);
+    b.upper[a] = fromOrderedBits(r[size_t(base + 3 + a)]);
+  }
+  b.largestValue = fromOrderedBits(r[12]);
+  return b;
+}
+
+void LghBuildPass::insertKeys(const gl::Buffer& sources, size_t sourceCount, bool fromGridLights, LevelTable& table,
+                              int level, const GridGeometry& grid, size_t expectedKeys, size_t stopAt) {
+  const size_t maxCapacity = nextPowerOfTwo(maxBlockBytes_ / sizeof(GLuint) + 1) / 2;
+  size_t capacity = nextPowerOfTwo(std::max<size_t>(1024, 2 * std::min(expectedKeys, denseVertexCount(grid, level))));
+  for (;;) {
+    if (capacity > maxCapacity)
+      throw std::runtime_error("LGH build: level " + std::to_string(level) + " needs more occupied vertices than a " +
+                               mib(maxBlockBytes_) + " storage block holds; use fewer levels");
+    ensureSize(table.keys, capacity * sizeof(GLuint));
+    table.keys.clearUint(gpu::kEmptyKey);
+    table.capacity = capacity;
+    counters_.clear();
+    setGridParams(grid, level, capacity, stopAt, 0.0);
+    table.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+    counters_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+    const gl::Program& program = fromGridLights ? insertFromGridLights_ : insertFromLights_;
+    if (fromGridLights) {
+      sources.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+      program.set("sourceCount", GLuint(sourceCount));
+      program.dispatch1D(sourceCount, kLocalSize);
+    } else {
+      forEachLightChunk(sources, sourceCount, [&](size_t, size_t count) {
+        program.set("sourceCount", GLuint(count));
+        program.dispatch1D(count, kLocalSize);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+      });
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    const auto c = counters_.download<GLuint>(2);
+    table.count = c[0];
+    // Keep the load factor at most 1/2 (short probe sequences); a full table lost keys: retry larger.
+    if (c[1] == 0 && 2 * table.count <= capacity) return;
+    if (table.count >= stopAt) return;  // a level-count trial that already has its answer
+    capacity = nextPowerOfTwo(4 * std::max<size_t>(table.count, capacity / 2));
+  }
+}
+
+void LghBuildPass::compact(LevelTable& table) {
+  ensureSize(table.slotIndex, table.capacity * sizeof(GLuint));
+  table.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  table.slotIndex.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  compactFlags_.set("capacity", GLuint(table.capacity));
+  compactFlags_.dispatch1D(table.capacity, kLocalSize);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  table.count = prefixSum_.scan(table.slotIndex, table.capacity);
+  ensureSize(table.compactKeys, std::max<size_t>(table.count, 1) * sizeof(GLuint));
+  table.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  table.slotIndex.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  table.compactKeys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS7);
+  compactWrite_.set("capacity", GLuint(table.capacity));
+  compactWrite_.dispatch1D(table.capacity, kLocalSize);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  const size_t bytes = table.count * sizeof(gpu::GpuGridLight);
+  if (bytes > maxBlockBytes_)
+    throw std::runtime_error("LGH build: " + std::to_string(table.count) + " grid lights in one level exceed a " +
+                             mib(maxBlockBytes_) + " storage block; use fewer levels");
+  ensureSize(table.gridLights, std::max<size_t>(bytes, sizeof(gpu::GpuGridLight)));
+}
+
+void LghBuildPass::scatterLevel(const gl::Buffer& lights, size_t lightCount, const GridGeometry& grid, int level,
+                                double largest, bool floatAtomics, LevelTable& table) {
+  insertKeys(lights, lightCount, false, table, level, grid, 2 * lightCount, SIZE_MAX);
+  compact(table);
+  // Accumulators: 6 + 3 + 4 values per vertex, two words each in fixed point.
+  const size_t words = floatAtomics ? 1 : 2;
+  for (auto [buffer, values] : {std::pair{&accPosition_, 6}, {&accIntensity_, 3}, {&accNormal_, 4}}) {
+    const size_t bytes = std::max<size_t>(table.count, 1) * size_t(values) * words * sizeof(GLuint);
+    if (bytes > maxBlockBytes_)
+      throw std::runtime_error("LGH build: the sums of " + std::to_string(table.count) +
+                               " vertices exceed a storage block; use fewer levels");
+    ensureSize(*buffer, bytes);
+    buffer->clear();
+  }
+  // Every sum is bounded by (lights) x (largest light value), since trilinear weights sum to 1 and
+  // offsets are in cells (|e| <= 1): that bound maps to 2^62.
+  const double bound = std::max(double(lightCount) * largest, 1e-30);
+  const float scale = float(kFixedPointHeadroom / bound);
+  setGridParams(grid, level, table.capacity, SIZE_MAX, scale);
+  table.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  table.slotIndex.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  counters_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+  accPosition_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
+  accIntensity_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);
+  accNormal_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS6);
+  const gl::Program& scatter = floatAtomics ? scatterFloat_ : scatterFixed_;
+  if (!floatAtomics) scatter.set("fixedPointScale", scale);
+  forEachLightChunk(lights, lightCount, [&](size_t, size_t count) {
+    scatter.set("lightCount", GLuint(count));
+    scatter.dispatch1D(count, kLocalSize);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  });
+
+  const gl::Program& finalize = floatAtomics ? finalizeFloat_ : finalizeFixed_;
+  if (!floatAtomics) finalize.set("fixedPointScale", scale);
+  table.compactKeys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS7);
+  table.gridLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  finalize.set("vertexCount", GLuint(table.count));
+  finalize.dispatch1D(table.count, kLocalSize);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+void LghBuildPass::gatherLevel(const LevelTable& children, const GridGeometry& grid, int level, LevelTable& table) {
+  insertKeys(children.gridLights, children.count, true, table, level, grid, 8 * children.count, SIZE_MAX);
+  compact(table);
+  setGridParams(grid, level, table.capacity, SIZE_MAX, 0.0);
+  children.gridLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  children.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  children.slotIndex.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  counters_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+  table.gridLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
+  table.compactKeys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS7);
+  gather_.set("vertexCount", GLuint(table.count));
+  gather_.set("childVerticesPerAxis", GLuint(verticesPerAxis(grid, level - 1)));
+  gather_.set("childTableMask", GLuint(children.capacity - 1));
+  gather_.dispatch1D(table.count, 64);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+size_t LghBuildPass::countFinestVertices(const gl::Buffer& lights, size_t lightCount, const GridGeometry& grid,
+                                         size_t stopAt) {
+  LevelTable trial;
+  insertKeys(lights, lightCount, false, trial, 1, grid, stopAt + 4096, stopAt);
+  return trial.count;
+}
+
+int LghBuildPass::chooseLevelCount(const gl::Buffer& lights, size_t lightCount, const Bounds& bounds, double eMin) {
+  const size_t n = bounds.litCount;
+  // Largest L with |S1| < N/2 (as lgh::chooseLevelCount). S1 can never have more than
+  // (2^(L-1)+1)^3 vertices, so the L where even a full grid passes need no trial.
+  int best = 1;
+  for (int L = 1; L <= kMaxLevels; ++L) {
+    const double fullGrid = std::pow(std::ldexp(1.0, L - 1) + 1.0, 3.0);
+    if (2.0 * fullGrid < double(n)) {
+      best = L;
+      continue;
+    }
+    const GridGeometry grid = makeGridAround(bounds.lower, bounds.upper, L, eMin);
+    const size_t stopAt = (n + 1) / 2;  // |S1| >= ceil(N/2) fails the rule
+    if (2 * countFinestVertices(lights, lightCount, grid, stopAt) < n)
+      best = L;
+    else
+      break;
+  }
+  return best;
+}
+
+void LghBuildPass::execute(const gl::Buffer& lights, size_t lightCount, const LghBuildOptions& options,
+                           GpuHierarchy& out, gl::Profiler* profiler) {
+  if (options.levels < 0 || options.levels > kMaxLevels)
+    throw std::runtime_error("LGH build: levels must be 0 (automatic) or 1.." + std::to_string(kMaxLevels) + ", got " +
+                             std::to_string(options.levels));
+  if (options.floatAtomics && !floatAtomicsAvailable_)
+    throw std::runtime_error("LGH build: float atomics need GL_NV_shader_atomic_float, which this context lacks");
+  maxLightsPerDispatch_ = options.maxLightsPerDispatch;
+  const double eMin = options.eMin > 0 ? options.eMin : 1.0;
+  auto scope = [&](const char* name) {
+    return profiler ? std::optional<gl::Profiler::Scope>(std::in_place, *profiler, name) : std::nullopt;
+  };
+
+  out = GpuHierarchy{};
+  if (lightCount == 0) return;
+  Bounds bounds;
+  {
+    auto s = scope("bounds");
+    bounds = computeBounds(lights, lightCount);
+  }
+  out.litLightCount = bounds.litCount;
+  int levels = options.levels;
+  if (levels == 0) {
+    auto s = scope("level count");
+    levels = chooseLevelCount(lights, lightCount, bounds, eMin);
+  }
+  const GridGeometry grid = makeGridAround(bounds.lower, bounds.upper, levels, eMin);
+  out.grid = grid;
+  out.levels.assign(size_t(levels) + 1, {});
+
+  std::vector<LevelTable> tables(size_t(levels) + 1);
+  for (int level = 1; level <= levels; ++level) {
+    const std::string name = "S" + std::to_string(level);
+    auto s = scope(name.c_str());
+    if (level == 1 || !options.gatherCoarseLevels)
+      scatterLevel(lights, lightCount, grid, level, bounds.largestValue, options.floatAtomics, tables[size_t(level)]);
+    else
+      gatherLevel(tables[size_t(level) - 1], grid, level, tables[size_t(level)]);
+    // A gathered level only looks up the level right below it: drop older hash tables early.
+    if (level >= 2) tables[size_t(level) - 2].releaseLookup();
+  }
+  gl::checkErrors("LGH build levels");
+
+  {
+    auto s = scope("merge");
+    size_t total = 0;
+    for (int level = 1; level <= levels; ++level) {
+      out.levels[size_t(level)] = {total, tables[size_t(level)].count};
+      total += tables[size_t(level)].count;
+    }
+    out.gridLightCount = total;
+    out.gridLights = gl::Buffer(std::max<size_t>(total, 1) * sizeof(gpu::GpuGridLight));
+    for (int level = 1; level <= levels; ++level) {
+      const LevelTable& t = tables[size_t(level)];
+      if (t.count == 0) continue;
+      glCopyNamedBufferSubData(t.gridLights.id(), out.gridLights.id(), 0,
+                               GLintptr(out.levels[size_t(level)].offset * sizeof(gpu::GpuGridLight)),
+                               GLsizeiptr(t.count * sizeof(gpu::GpuGridLight)));
+    }
+  }
+  gl::checkErrors("LGH build");
+}
+
+std::vector<gpu::GpuLight> toGpuLights(const std::vector<Light>& lights) {
+  std::vector<gpu::GpuLight> out(lights.size());
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const bool oriented = lights[i].normal != glm::vec3(0.0f);
+    out[i] = {lights[i].position, oriented ? gpu::octEncode(lights[i].normal) : 0u, lights[i].intensity,
+              oriented ? gpu::kLightOriented : 0u};
+  }
+  return out;
+}
+
+std::vector<Light> fromGpuLights(const std::vector<gpu::GpuLight>& lights) {
+  std::vector<Light> out(lights.size());
+  for (size_t i = 0; i < lights.size(); ++i)
+    out[i] = {lights[i].position, lights[i].intensity,
+              (lights[i].flags & gpu::kLightOriented) ? gpu::octDecode(lights[i].normalOct) : glm::vec3(0.0f)};
+  return out;
+}
+
+}  // namespace lgh
