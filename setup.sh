@@ -11,7 +11,7 @@ cd "$(dirname "$0")"
 packages=(
   cmake g++ make pkg-config python3-glad
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev libglfw3-dev
-  libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libopenimageio-dev libcli11-dev
+  libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libopenimageio-dev openimageio-tools libcli11-dev
   libgtest-dev
 )
 

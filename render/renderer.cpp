@@ -1,5 +1,7 @@
 #include "render/renderer.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "render/gl/debug.h"
@@ -13,8 +15,18 @@ struct AovName {
   Aov aov;
   const char* name;
 };
-constexpr AovName kAovNames[] = {{Aov::Final, "final"},       {Aov::Direct, "direct"}, {Aov::Emission, "emission"},
-                                 {Aov::Albedo, "albedo"},     {Aov::Normal, "normal"}, {Aov::Position, "position"}};
+constexpr AovName kAovNames[] = {{Aov::Final, "final"},         {Aov::Direct, "direct"},     {Aov::Indirect, "indirect"},
+                                 {Aov::Irradiance, "irradiance"}, {Aov::Overdraw, "overdraw"}, {Aov::Emission, "emission"},
+                                 {Aov::Albedo, "albedo"},       {Aov::Normal, "normal"},     {Aov::Position, "position"}};
+
+// A perceptual heat map (magma-like: black, purple, orange, pale yellow) of t in [0, 1].
+glm::vec3 heatColor(float t) {
+  static const glm::vec3 stops[] = {{0.0f, 0.0f, 0.02f}, {0.23f, 0.06f, 0.44f}, {0.55f, 0.16f, 0.51f},
+                                    {0.87f, 0.32f, 0.38f}, {0.99f, 0.62f, 0.36f}, {0.99f, 0.99f, 0.75f}};
+  const float x = std::clamp(t, 0.0f, 1.0f) * 5.0f;
+  const int i = std::min(int(x), 4);
+  return glm::mix(stops[i], stops[i + 1], x - float(i));
+}
 
 }  // namespace
 
@@ -32,10 +44,20 @@ std::vector<std::string> aovNames() {
   return names;
 }
 
+bool isDataAov(Aov aov) {
+  return aov == Aov::Overdraw || aov == Aov::Albedo || aov == Aov::Normal || aov == Aov::Position;
+}
+
 double FrameStats::totalMs() const {
   double total = 0;
   for (const auto& p : passes) total += p.wallMs > 0 ? p.wallMs : p.gpuMs;
   return total;
+}
+
+double FrameStats::passMs(const std::string& name) const {
+  for (const auto& p : passes)
+    if (p.name == name) return p.wallMs > 0 ? p.wallMs : p.gpuMs;
+  return 0;
 }
 
 Camera resolveCamera(const Scene& scene, const RenderSettings& settings) {
@@ -45,25 +67,58 @@ Camera resolveCamera(const Scene& scene, const RenderSettings& settings) {
 }
 
 Renderer::Renderer(const SceneGpu& scene, const RenderSettings& settings)
-    : scene_(scene), settings_(settings), frameUniforms_(sizeof(gpu::FrameUniforms)) {
+    : scene_(scene),
+      settings_(settings),
+      frameUniforms_(sizeof(gpu::FrameUniforms)),
+      inputLightsPass_(scene),
+      buildPass_(GLAD_GL_NV_shader_atomic_float != 0) {
   allocateTargets();
 }
 
 void Renderer::setSettings(const RenderSettings& settings) {
-  const bool resized = settings.width != settings_.width || settings.height != settings_.height;
+  const bool resized = settings.width != settings_.width || settings.height != settings_.height ||
+                       settings.interleave != settings_.interleave;
   settings_ = settings;
   if (resized) allocateTargets();
 }
 
 void Renderer::allocateTargets() {
-  gbuffer_ = GBuffer(settings_.width, settings_.height);
-  direct_ = gl::Texture2D(settings_.width, settings_.height, GL_RGBA32F);
-  final_ = gl::Texture2D(settings_.width, settings_.height, GL_RGBA32F);
+  const int w = settings_.width, h = settings_.height;
+  gbuffer_ = GBuffer(w, h);
+  direct_ = gl::Texture2D(w, h, GL_RGBA32F);
+  tiles_ = settings_.interleave > 1 ? Tiles(TileLayout::of(settings_.interleave, w, h)) : Tiles();
+  irradiance_ = gl::Texture2D(w, h, GL_RGBA32F);
+  fragmentCounts_ = gl::Texture2D(w, h, GL_R32UI);
+  fragmentCounts_.clearUint(0);
+  indirect_ = gl::Texture2D(w, h, GL_RGBA32F);
+  final_ = gl::Texture2D(w, h, GL_RGBA32F);
   gl::checkErrors("allocating render targets");
 }
 
 float Renderer::clampDistance() const {
   return settings_.clampDistance > 0 ? settings_.clampDistance : 1e-3f * std::max(scene_.scene().bounds.diagonal(), 1e-6f);
+}
+
+bool Renderer::pointLightsThroughLgh() const {
+  return settings_.indirect && scene_.punctualLights().size() > size_t(settings_.maxDirectLights);
+}
+
+InputLightOptions Renderer::inputLightOptions() const {
+  InputLightOptions o;
+  o.pointLights = pointLightsThroughLgh();
+  o.emitterSamples = size_t(settings_.emitterSamples);
+  o.vplBudget = size_t(settings_.vpls);
+  o.bounces = settings_.bounces;
+  o.seed = std::uint32_t(settings_.seed);
+  return o;
+}
+
+LghBuildOptions Renderer::buildOptions() const {
+  LghBuildOptions o;
+  o.levels = settings_.levels;
+  // The smallest top cell: 1e-4 of the scene (one light, or lights that coincide).
+  o.eMin = 1e-4 * std::max(double(scene_.scene().bounds.diagonal()), 1e-6);
+  return o;
 }
 
 void Renderer::uploadFrameUniforms(const CameraView& view) {
@@ -72,7 +127,8 @@ void Renderer::uploadFrameUniforms(const CameraView& view) {
   u.inverseViewProjection = glm::inverse(u.viewProjection);
   u.cameraPosition = glm::vec4(view.position, 1.0f);
   u.resolution = glm::uvec4(unsigned(settings_.width), unsigned(settings_.height), frameIndex_, 0u);
-  u.sceneScale = glm::vec4(scene_.scene().bounds.diagonal(), clampDistance(), 0.0f, 0.0f);
+  const float footprint = 2.0f / (float(settings_.height) * std::max(std::abs(view.projection[1][1]), 1e-30f));
+  u.sceneScale = glm::vec4(scene_.scene().bounds.diagonal(), clampDistance(), footprint, 0.0f);
   frameUniforms_.update(&u, sizeof(u));
   frameUniforms_.bindBase(GL_UNIFORM_BUFFER, LGH_UBO_FRAME);
 }
@@ -86,22 +142,95 @@ FrameStats Renderer::render(const CameraView& view) {
   }
   {
     gl::Profiler::Scope pass(profiler_, "direct light");
-    directPass_.execute(scene_, gbuffer_, settings_.directShadows, direct_);
+    directPass_.execute(scene_, gbuffer_, settings_.directShadows, pointLightsThroughLgh(), direct_);
+  }
+  const bool indirect = settings_.indirect;
+  if (indirect) {
+    // S0 and the hierarchy depend on the lights and the settings, not on the camera.
+    const InputLightOptions lightOptions = inputLightOptions();
+    const LghBuildOptions hierarchyOptions = buildOptions();
+    const bool relight = !lightsBuilt_ || lightOptions != builtLightOptions_;
+    if (relight) {
+      gl::Profiler::Scope pass(profiler_, "input lights");
+      inputLightsPass_.execute(lightOptions, inputLights_);
+      hierarchyBuilt_ = false;
+    }
+    // Brute force needs no hierarchy; it is built when the light pass first needs it.
+    const bool rebuild = !settings_.bruteForce && (!hierarchyBuilt_ || hierarchyOptions.levels != builtHierarchyOptions_.levels);
+    if (rebuild) {
+      gl::Profiler::Scope pass(profiler_, "LGH build");
+      buildPass_.execute(inputLights_.lights, inputLights_.count, hierarchyOptions, hierarchy_);
+      hierarchyBuilt_ = true;
+    }
+    stats.lightsRebuilt = relight || rebuild;
+    lightsBuilt_ = true;
+    builtLightOptions_ = lightOptions;
+    builtHierarchyOptions_ = hierarchyOptions;
+
+    LightPassOptions options;
+    options.alpha = settings_.alpha;
+    options.firstLevel = settings_.startLevel;
+    options.clampDistance = clampDistance();
+    options.bruteForce = settings_.bruteForce;
+    options.countFragments = settings_.overdraw;
+    const bool interleaved = settings_.interleave > 1;
+    if (interleaved) {
+      gl::Profiler::Scope pass(profiler_, "interleave split");
+      interleavePass_.split(gbuffer_, tiles_);
+    }
+    {
+      gl::Profiler::Scope pass(profiler_, "light pass");
+      LightPassTarget target =
+          interleaved ? LightPassTarget{tiles_.position, tiles_.normal, tiles_.layout, tiles_.irradiance, &tiles_.fragmentCounts}
+                      : LightPassTarget{gbuffer_.position, gbuffer_.normal, TileLayout::of(1, settings_.width, settings_.height),
+                                        irradiance_, &fragmentCounts_};
+      stats.lights.lightsPerLevel = lightPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, options, target).lightsPerLevel;
+    }
+    if (interleaved) {
+      gl::Profiler::Scope pass(profiler_, "interleave resolve");
+      interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, settings_.overdraw, irradiance_, fragmentCounts_);
+    }
+    stats.lights.inputLights = inputLights_.count;
+    stats.lights.pointLights = inputLights_.pointLights;
+    stats.lights.emitterSamples = inputLights_.emitterSamples;
+    stats.lights.vpls = inputLights_.vpls;
+    stats.lights.levels = settings_.bruteForce ? 0 : hierarchy_.grid.levels;
   }
   {
     gl::Profiler::Scope pass(profiler_, "composite");
-    stats.nonFinitePixels = compositePass_.execute(gbuffer_, direct_, nullptr, nullptr, final_);
+    stats.nonFinitePixels =
+        compositePass_.execute(gbuffer_, direct_, indirect ? &irradiance_ : nullptr, nullptr, indirect_, final_);
   }
   stats.passes = profiler_.collect();
+  if (indirect && settings_.overdraw) measureOverdraw(stats.lights);
   ++frameIndex_;
   gl::checkErrors("frame");
   return stats;
+}
+
+void Renderer::measureOverdraw(LightStats& stats) const {
+  const std::vector<GLuint> counts = fragmentCounts_.readUint();
+  const std::vector<glm::vec4> irradiance = irradiance_.readRGBA();
+  double rasterized = 0, shaded = 0;
+  unsigned largest = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    rasterized += counts[i];
+    shaded += irradiance[i].a;
+    largest = std::max(largest, counts[i]);
+  }
+  const double pixels = double(std::max<size_t>(counts.size(), 1));
+  stats.rasterizedPerPixel = rasterized / pixels;
+  stats.shadedPerPixel = shaded / pixels;
+  stats.maxRasterized = largest;
 }
 
 const gl::Texture2D& Renderer::texture(Aov aov) const {
   switch (aov) {
     case Aov::Final: return final_;
     case Aov::Direct: return direct_;
+    case Aov::Indirect: return indirect_;
+    case Aov::Irradiance: return irradiance_;
+    case Aov::Overdraw: return fragmentCounts_;
     case Aov::Emission: return gbuffer_.emission;
     case Aov::Albedo: return gbuffer_.albedo;
     case Aov::Normal: return gbuffer_.normal;
@@ -111,6 +240,14 @@ const gl::Texture2D& Renderer::texture(Aov aov) const {
 }
 
 ImageRGBA Renderer::readImage(Aov aov) const {
+  if (aov == Aov::Overdraw) {
+    // Fragments per pixel as a heat map scaled to the frame's largest count (the paper's Fig. 5).
+    const std::vector<GLuint> counts = fragmentCounts_.readUint();
+    const GLuint largest = std::max<GLuint>(1, *std::max_element(counts.begin(), counts.end()));
+    std::vector<glm::vec4> colors(counts.size());
+    for (size_t i = 0; i < counts.size(); ++i) colors[i] = glm::vec4(heatColor(float(counts[i]) / float(largest)), 1.0f);
+    return fromGLRows(fragmentCounts_.width(), fragmentCounts_.height(), colors);
+  }
   const gl::Texture2D& t = texture(aov);
   return fromGLRows(t.width(), t.height(), t.readRGBA());
 }

@@ -13,19 +13,42 @@
 #include "render/passes/composite_pass.h"
 #include "render/passes/direct_light_pass.h"
 #include "render/passes/gbuffer_pass.h"
+#include "render/passes/input_lights_pass.h"
+#include "render/passes/interleave_pass.h"
+#include "render/passes/lgh_build_pass.h"
+#include "render/passes/light_volume_pass.h"
 #include "render/settings.h"
 
 namespace lgh {
 
 // Images a frame can hand back (AOVs).
-enum class Aov { Final, Direct, Emission, Albedo, Normal, Position };
-Aov parseAov(const std::string& name);  // "final", "direct", "emission", "albedo", "normal", "position"
+//   indirect    radiance through the LGH, unshadowed (albedo / pi x irradiance)
+//   irradiance  the light pass's irradiance (before albedo)
+//   overdraw    heat map of fragments rasterized per pixel in the light pass (needs settings.overdraw)
+enum class Aov { Final, Direct, Indirect, Irradiance, Overdraw, Emission, Albedo, Normal, Position };
+Aov parseAov(const std::string& name);
 std::vector<std::string> aovNames();
+// AOVs that hold data rather than radiance: written without exposure or tone curve.
+bool isDataAov(Aov aov);
+
+// What the LGH part of the frame drew, in device-independent counts.
+struct LightStats {
+  size_t inputLights = 0, pointLights = 0, emitterSamples = 0, vpls = 0;  // S0 and its parts
+  int levels = 0;                       // L of the hierarchy in use
+  std::vector<size_t> lightsPerLevel;   // lights drawn by the light pass: [0] S0, [l] level l
+  // Per pixel of the image, only with settings.overdraw: fragments rasterized (the paper's Fig. 5
+  // overdraw), fragments that shaded (non-zero blending weight), and the largest rasterized count.
+  double rasterizedPerPixel = 0, shadedPerPixel = 0;
+  unsigned maxRasterized = 0;
+};
 
 struct FrameStats {
   std::vector<gl::PassTiming> passes;
+  LightStats lights;
+  bool lightsRebuilt = false;    // S0 and the hierarchy were (re)built this frame
   unsigned nonFinitePixels = 0;  // NaN/Inf pixels written black by the composite pass (should be 0)
   double totalMs() const;
+  double passMs(const std::string& name) const;  // 0 when the pass did not run
 };
 
 // The scene camera named in settings; else the scene's first camera; else one framing the scene's bounds.
@@ -43,10 +66,17 @@ class Renderer {
   const GBuffer& gbuffer() const { return gbuffer_; }
   const gl::Texture2D& texture(Aov aov) const;
   float clampDistance() const;  // d_c in use (resolves the automatic default)
+  // The input lights and hierarchy in use (built by the first render()).
+  const InputLights& inputLights() const { return inputLights_; }
+  const GpuHierarchy& hierarchy() const { return hierarchy_; }
 
  private:
   void allocateTargets();
   void uploadFrameUniforms(const CameraView& view);
+  InputLightOptions inputLightOptions() const;
+  bool pointLightsThroughLgh() const;
+  LghBuildOptions buildOptions() const;
+  void measureOverdraw(LightStats& stats) const;
 
   const SceneGpu& scene_;
   RenderSettings settings_;
@@ -57,11 +87,26 @@ class Renderer {
   // Passes, in frame order.
   GBufferPass gbufferPass_;
   DirectLightPass directPass_;
+  InputLightsPass inputLightsPass_;
+  LghBuildPass buildPass_;
+  InterleavePass interleavePass_;
+  LightVolumePass lightPass_;
   CompositePass compositePass_;
+
+  // Built when the lights or the hierarchy's settings change, not every frame.
+  InputLights inputLights_;
+  GpuHierarchy hierarchy_;
+  bool lightsBuilt_ = false, hierarchyBuilt_ = false;
+  InputLightOptions builtLightOptions_;
+  LghBuildOptions builtHierarchyOptions_;
 
   // Targets the passes hand to each other.
   GBuffer gbuffer_;
   gl::Texture2D direct_;
+  Tiles tiles_;                  // interleaved surfaces and light-pass targets (n > 1)
+  gl::Texture2D irradiance_;     // LGH irradiance, full resolution
+  gl::Texture2D fragmentCounts_; // R32UI, light-pass fragments per pixel (settings.overdraw)
+  gl::Texture2D indirect_;       // albedo / pi x irradiance, unshadowed
   gl::Texture2D final_;
 };
 

@@ -11,6 +11,7 @@ layout(std430, binding = LGH_BINDING_BVH_TRIANGLES) readonly buffer BvhTriangles
 struct RayHit {
   float t;
   uint sceneTriangle;
+  uint bvhTriangle;   // index into bvhTriangles (for the geometric normal)
   vec2 barycentrics;  // (u, v): weights of vertices 1 and 2
 };
 
@@ -30,6 +31,7 @@ float bvhEnterBox(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 invDirection
 bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, out RayHit hit) {
   hit.t = tMax;
   hit.sceneTriangle = 0xffffffffu;
+  hit.bvhTriangle = 0xffffffffu;
   hit.barycentrics = vec2(0.0);
   if (bvhNodes.length() == 0) return false;
   // A zero direction component gives +-inf in invDirection, never NaN: keep it away from 0 exactly.
@@ -45,12 +47,14 @@ bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, 
     BvhNode current = bvhNodes[node];
     if (current.triangleCount > 0u) {
       for (uint i = 0u; i < current.triangleCount; ++i) {
-        BvhTriangle tri = bvhTriangles[current.firstChildOrTriangle + i];
+        uint triangleIndex = current.firstChildOrTriangle + i;
+        BvhTriangle tri = bvhTriangles[triangleIndex];
         vec3 tuv;
         if (intersectTriangle(origin, direction, tri.v0, tri.edge1, tri.edge2, tMin, hit.t, tuv)) {
           hit.t = tuv.x;
           hit.barycentrics = tuv.yz;
           hit.sceneTriangle = tri.sceneTriangle;
+          hit.bvhTriangle = triangleIndex;
           found = true;
           if (anyHit) return true;
         }

@@ -30,13 +30,48 @@ GPU_STRUCT(GpuPunctualLight) {
 };
 GPU_CHECK_SIZE(GpuPunctualLight, 64);
 
+// What a compute shader needs at a ray hit besides the BVH: material and texture coordinates.
+GPU_STRUCT(GpuSceneTriangle) {
+  uint material;
+  uint pad;
+  vec2 uv0;
+  vec2 uv1;
+  vec2 uv2;
+};
+GPU_CHECK_SIZE(GpuSceneTriangle, 32);
+
+// A texture in the packed texel buffer (RGBA8 per uint, rows top-down, sRGB-encoded).
+GPU_STRUCT(GpuTextureInfo) {
+  uint firstTexel;
+  uint width;
+  uint height;
+  uint pad;
+};
+GPU_CHECK_SIZE(GpuTextureInfo, 16);
+
+// A source of light paths for VPL generation, chosen with probability proportional to its power.
+GPU_CONST uint kEmitterPunctual = 0u;  // `light` indexes the punctual lights
+GPU_CONST uint kEmitterTriangle = 1u;  // an emissive triangle: v0, edge1, edge2, radiance
+GPU_STRUCT(GpuEmitter) {
+  vec3 v0;
+  uint kind;           // kEmitterPunctual or kEmitterTriangle
+  vec3 edge1;
+  float cdf;           // inclusive cumulative selection probability
+  vec3 edge2;
+  float selectionPdf;  // probability of choosing this emitter
+  vec3 radiance;       // triangle: emitted radiance (emissive factor x strength); punctual: unused
+  uint light;          // punctual: index into the punctual lights; triangle: scene triangle index
+};
+GPU_CHECK_SIZE(GpuEmitter, 64);
+
 // Per-frame uniforms (std140; the layout rules in gpu_prelude.h make std140 and C++ agree here).
 GPU_STRUCT(FrameUniforms) {
   mat4 viewProjection;
   mat4 inverseViewProjection;
   vec4 cameraPosition;   // xyz; w unused
   uvec4 resolution;      // width, height, frame index, 0
-  vec4 sceneScale;       // x: scene bounds diagonal, y: clamp distance d_c, zw: unused
+  vec4 sceneScale;       // x: scene bounds diagonal, y: clamp distance d_c, z: pixel footprint per unit
+                         // distance from the camera (2 tan(fovy/2) / height), w: unused
 };
 GPU_CHECK_SIZE(FrameUniforms, 176);
 

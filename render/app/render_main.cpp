@@ -77,7 +77,12 @@ int run(int argc, char** argv) {
   const lgh::FrameStats stats = renderer.render(lgh::makeCameraView(camera, settings.width, settings.height));
 
   lgh::writeImage(output, renderer.readImage(lgh::Aov::Final), settings.exposure, toneMap);
-  for (const auto& [aov, path] : aovs) lgh::writeImage(path, renderer.readImage(aov), settings.exposure, toneMap);
+  for (const auto& [aov, path] : aovs) {
+    if (lgh::isDataAov(aov))
+      lgh::writeImage(path, renderer.readImage(aov), 0.0f, lgh::ToneMap::Clamp);
+    else
+      lgh::writeImage(path, renderer.readImage(aov), settings.exposure, toneMap);
+  }
 
   if (!quiet) {
     std::printf("scene      %s\n", scenePath.string().c_str());
@@ -89,6 +94,22 @@ int run(int argc, char** argv) {
     std::printf("lights     %zu punctual, %zu emissive materials\n", scene.lights.size(),
                 size_t(std::count_if(scene.materials.begin(), scene.materials.end(),
                                      [](const lgh::Material& m) { return m.isEmissive(); })));
+    const lgh::LightStats& ls = stats.lights;
+    if (settings.indirect) {
+      std::printf("S0         %zu input lights: %zu point lights, %zu emitter samples, %zu VPLs (%d bounces)\n",
+                  ls.inputLights, ls.pointLights, ls.emitterSamples, ls.vpls, settings.bounces);
+      std::string perLevel;
+      for (size_t l = 0; l < ls.lightsPerLevel.size(); ++l)
+        if (ls.lightsPerLevel[l] > 0) perLevel += " S" + std::to_string(l) + ":" + std::to_string(ls.lightsPerLevel[l]);
+      if (settings.bruteForce)
+        std::printf("light pass brute force over S0 (%zu lights at every pixel)\n", ls.inputLights);
+      else
+        std::printf("LGH        L = %d, alpha %.3g, start level %d, interleave %dx%d, drawn%s\n", ls.levels,
+                    double(settings.alpha), settings.startLevel, settings.interleave, settings.interleave, perLevel.c_str());
+      if (settings.overdraw)
+        std::printf("overdraw   %.1f fragments rasterized per pixel (max %u), %.1f shaded\n", ls.rasterizedPerPixel,
+                    ls.maxRasterized, ls.shadedPerPixel);
+    }
     std::printf("load       %.1f ms, GPU setup %.1f ms\n", loadMs, setupMs);
     std::printf("passes     (wall ms, glFinish-bracketed)\n");
     for (const auto& p : stats.passes) std::printf("  %-18s %9.2f\n", p.name.c_str(), p.wallMs);

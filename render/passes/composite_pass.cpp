@@ -14,13 +14,15 @@ CompositePass::CompositePass()
   white_.clear(glm::vec4(1.0f));
 }
 
-unsigned CompositePass::execute(const GBuffer& gbuffer, const gl::Texture2D& direct, const gl::Texture2D* indirect,
-                                const gl::Texture2D* visibility, gl::Texture2D& out) {
+unsigned CompositePass::execute(const GBuffer& gbuffer, const gl::Texture2D& direct,
+                                const gl::Texture2D* indirectIrradiance, const gl::Texture2D* visibility,
+                                gl::Texture2D& indirectOut, gl::Texture2D& out) {
   gbuffer.bindForReading();
   direct.bindTexture(4);
-  (indirect ? *indirect : black_).bindTexture(5);
+  (indirectIrradiance ? *indirectIrradiance : black_).bindTexture(5);
   (visibility ? *visibility : white_).bindTexture(6);
   out.bindImage(0, GL_WRITE_ONLY);
+  indirectOut.bindImage(1, GL_WRITE_ONLY);
   counter_.clear();
   counter_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});

@@ -1,7 +1,8 @@
 #pragma once
-// Final image: emission + direct + indirect_unshadowed x visibility ratio.
-//   in:  GBuffer (emission), direct, indirect (unshadowed), visibility ratio
-//   out: final radiance (RGBA32F); count of non-finite pixels (written black)
+// Final image: emission + direct + albedo / pi x indirect irradiance (unshadowed) x visibility ratio.
+//   in:  GBuffer (emission, albedo), direct, indirect irradiance, visibility ratio
+//   out: final radiance (RGBA32F), indirect radiance unshadowed (RGBA32F, an AOV); count of
+//        non-finite pixels (written black)
 
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
@@ -14,8 +15,8 @@ class CompositePass {
   CompositePass();
   // indirect / visibility may be null: no indirect light, visibility 1.
   // Returns the number of pixels that were NaN or Inf before being written black.
-  unsigned execute(const GBuffer& gbuffer, const gl::Texture2D& direct, const gl::Texture2D* indirect,
-                   const gl::Texture2D* visibility, gl::Texture2D& out);
+  unsigned execute(const GBuffer& gbuffer, const gl::Texture2D& direct, const gl::Texture2D* indirectIrradiance,
+                   const gl::Texture2D* visibility, gl::Texture2D& indirectOut, gl::Texture2D& out);
 
  private:
   gl::Program program_;

@@ -13,7 +13,9 @@ namespace lgh {
 class DirectLightPass {
  public:
   DirectLightPass();
-  void execute(const SceneGpu& scene, const GBuffer& gbuffer, bool shadows, gl::Texture2D& out) const;
+  // skipPointLights: point lights are shaded elsewhere (through the LGH, when there are many).
+  void execute(const SceneGpu& scene, const GBuffer& gbuffer, bool shadows, bool skipPointLights,
+               gl::Texture2D& out) const;
 
  private:
   gl::Program program_;

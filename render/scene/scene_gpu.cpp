@@ -34,6 +34,27 @@ gl::Texture2D uploadTexture(const Texture& texture) {
   return t;
 }
 
+// Every texture's texels in one buffer for compute shaders (no sampler arrays indexed per hit in core
+// GL). Textures that would overflow the shader storage block limit are subsampled by 2 until they fit:
+// they only colour VPLs, whose albedo needs no full resolution (the G-buffer samples the originals).
+void packTexels(const Scene& scene, std::vector<gpu::GpuTextureInfo>& infos, std::vector<std::uint32_t>& texels) {
+  GLint64 maxBlock = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+  const size_t maxTexels = size_t(maxBlock) / sizeof(std::uint32_t);
+  for (const Texture& t : scene.textures) {
+    int step = 1;
+    while (texels.size() + size_t(t.width / step) * size_t(t.height / step) > maxTexels && step < 1 << 12) step *= 2;
+    const std::uint32_t w = std::uint32_t(std::max(1, t.width / step)), h = std::uint32_t(std::max(1, t.height / step));
+    infos.push_back({std::uint32_t(texels.size()), w, h, 0});
+    for (std::uint32_t y = 0; y < h; ++y)
+      for (std::uint32_t x = 0; x < w; ++x) {
+        const std::uint8_t* p = &t.rgba[4 * (size_t(y * std::uint32_t(step)) * size_t(t.width) + x * std::uint32_t(step))];
+        texels.push_back(std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 |
+                         std::uint32_t(p[3]) << 24);
+      }
+  }
+}
+
 }  // namespace
 
 SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
@@ -70,6 +91,18 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   materialBuffer_ = gl::Buffer::fromVector(materials_, 0);
   lightBuffer_ = gl::Buffer::fromVector(lights_, 0);
 
+  std::vector<gpu::GpuSceneTriangle> triangles(scene.triangleCount());
+  for (size_t t = 0; t < triangles.size(); ++t) {
+    const std::uint32_t* i = &scene.indices[3 * t];
+    triangles[t] = {scene.triangleMaterials[t], 0, scene.texcoords[i[0]], scene.texcoords[i[1]], scene.texcoords[i[2]]};
+  }
+  sceneTriangles_ = gl::Buffer::fromVector(triangles, 0);
+  std::vector<gpu::GpuTextureInfo> infos;
+  std::vector<std::uint32_t> texels;
+  packTexels(scene, infos, texels);
+  textureInfos_ = gl::Buffer::fromVector(infos, 0);
+  texels_ = gl::Buffer::fromVector(texels, 0);
+
   for (const Texture& t : scene.textures) textures_.push_back(uploadTexture(t));
   white_ = gl::Texture2D(1, 1, GL_RGBA8);
   const std::uint8_t white[4] = {255, 255, 255, 255};
@@ -82,6 +115,9 @@ void SceneGpu::bindForCompute() const {
   bvhTriangles_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_TRIANGLES);
   materialBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_MATERIALS);
   lightBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PUNCTUAL_LIGHTS);
+  sceneTriangles_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_SCENE_TRIANGLES);
+  textureInfos_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_TEXTURE_INFOS);
+  texels_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_TEXELS);
 }
 
 const gl::Texture2D& SceneGpu::texture(int index) const {

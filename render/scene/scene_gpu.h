@@ -17,7 +17,8 @@ class SceneGpu {
  public:
   explicit SceneGpu(const Scene& scene);
 
-  // Binds the BVH, materials and punctual lights at their LGH_BINDING_* slots for compute shaders.
+  // Binds the BVH, scene triangles, materials, textures and punctual lights at their LGH_BINDING_*
+  // slots for compute shaders.
   void bindForCompute() const;
   // Issues one draw per material range; `onMaterial` binds that material's textures and uniforms.
   template <typename OnMaterial>
@@ -47,6 +48,7 @@ class SceneGpu {
   gl::Buffer positions_, normals_, texcoords_, indices_;
   gl::VertexArrayHandle vertexArray_;
   gl::Buffer bvhNodes_, bvhTriangles_, materialBuffer_, lightBuffer_;
+  gl::Buffer sceneTriangles_, textureInfos_, texels_;  // for compute shaders at ray hits
   std::vector<gl::Texture2D> textures_;
   gl::Texture2D white_;
 };

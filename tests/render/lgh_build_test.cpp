@@ -10,6 +10,7 @@
 #include "lgh/hierarchy.h"
 #include "render/passes/lgh_build_pass.h"
 #include "render/scene/scene.h"
+#include "render/scene/surface_samples.h"
 
 namespace lgh::test {
 namespace {
@@ -24,33 +25,6 @@ std::vector<Light> randomLights(size_t n, std::uint32_t seed, bool oriented, glm
     l.position = offset + extent * glm::vec3(u(rng), u(rng), u(rng));
     l.intensity = glm::vec3(intensity(rng), intensity(rng), intensity(rng));
     if (oriented) l.normal = glm::normalize(glm::vec3(g(rng), g(rng), g(rng)));
-  }
-  return lights;
-}
-
-// VPL-like lights: points on Sponza's triangles, area-weighted, with the surface normal.
-std::vector<Light> surfaceLights(const Scene& scene, size_t n, std::uint32_t seed) {
-  std::vector<double> cdf;
-  double total = 0;
-  for (size_t t = 0; t < scene.triangleCount(); ++t) {
-    const glm::vec3 a = scene.positions[scene.indices[3 * t]], b = scene.positions[scene.indices[3 * t + 1]],
-                    c = scene.positions[scene.indices[3 * t + 2]];
-    total += 0.5 * glm::length(glm::cross(b - a, c - a));
-    cdf.push_back(total);
-  }
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<Light> lights(n);
-  for (Light& l : lights) {
-    const size_t t = size_t(std::lower_bound(cdf.begin(), cdf.end(), u(rng) * total) - cdf.begin());
-    const glm::vec3 a = scene.positions[scene.indices[3 * t]], b = scene.positions[scene.indices[3 * t + 1]],
-                    c = scene.positions[scene.indices[3 * t + 2]];
-    double s = u(rng), r = u(rng);
-    if (s + r > 1) s = 1 - s, r = 1 - r;
-    l.position = a + float(s) * (b - a) + float(r) * (c - a);
-    const glm::vec3 n = glm::cross(b - a, c - a);
-    l.normal = glm::length(n) > 0 ? glm::normalize(n) : glm::vec3(0, 1, 0);
-    l.intensity = glm::vec3(float(u(rng)), float(u(rng)), float(u(rng))) * 0.01f;
   }
   return lights;
 }
@@ -141,7 +115,7 @@ TEST_F(LghBuildTest, MatchesCpuGatherBuildOnRandomLights) {
 TEST_F(LghBuildTest, MatchesCpuOnSponzaSurfaceLights) {
   LGH_REQUIRE_SHARED_SCENE(path, "sponza_sun/sponza_sun.gltf");
   const Scene scene = loadScene(path);
-  const GpuBuild gpu = buildOnGpu(surfaceLights(scene, 200000, 5));
+  const GpuBuild gpu = buildOnGpu(sampleSurfaceLights(scene, 200000, 5, 1000.0f));
   expectMatchesCpu(gpu.hierarchy, buildGather(gpu.seen, gpu.hierarchy.grid), "sponza");
 }
 

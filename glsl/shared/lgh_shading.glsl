@@ -1,0 +1,49 @@
+// The LGH shading model in GLSL: blending functions (lgh/blending.h) and the contribution of one
+// light (lgh/shading.h). The C++ versions are the reference; tests/render/lgh_shading_test.cpp runs
+// these on the GPU against them on the same inputs.
+#ifndef LGH_LGH_SHADING_GLSL
+#define LGH_LGH_SHADING_GLSL
+
+const uint kRoleFinest = 0u;
+const uint kRoleMiddle = 1u;
+const uint kRoleTop = 2u;
+const uint kRoleOnly = 3u;
+
+uint levelRole(uint level, uint firstLevel, uint levels) {
+  if (firstLevel == levels) return kRoleOnly;
+  if (level == firstLevel) return kRoleFinest;
+  if (level == levels) return kRoleTop;
+  return kRoleMiddle;
+}
+
+// Weight of a light of a level with the given role at distance d, R = alpha * h_level.
+float blendWeight(uint role, float d, float R) {
+  if (role == kRoleOnly) return 1.0;
+  bool fadesIn = role == kRoleMiddle || role == kRoleTop;
+  bool fadesOut = role == kRoleFinest || role == kRoleMiddle;
+  if (d <= 0.5 * R) return fadesIn ? 0.0 : 1.0;
+  if (d <= R) return fadesIn ? 2.0 * d / R - 1.0 : 1.0;
+  if (d < 2.0 * R) return fadesOut ? 2.0 - d / R : 1.0;
+  return fadesOut ? 0.0 : 1.0;
+}
+
+// Flux-conserving emission lobe of a cluster (see lgh/shading.h for the derivation).
+float emissionLobe(vec3 meanNormal, float omniFraction, vec3 u) {
+  return max(0.0, max(0.0, dot(meanNormal, u)) + (1.0 - length(meanNormal) - omniFraction) * 0.25 + omniFraction);
+}
+
+const float kMinDistanceSq = 1e-24;
+
+// I * max(0, n.w) * F(-w) / max(d^2, dc^2): irradiance at x (multiply by rho/pi for radiance).
+vec3 lightContribution(vec3 lightPos, vec3 intensity, vec3 meanNormal, float omniFraction, vec3 x, vec3 n,
+                       float clampDistance) {
+  vec3 toLight = lightPos - x;
+  float d = length(toLight);
+  vec3 w = d > 0.0 ? toLight / d : n;
+  float cosine = max(0.0, dot(n, w));
+  if (cosine == 0.0) return vec3(0.0);
+  float distanceSq = max(max(d * d, clampDistance * clampDistance), kMinDistanceSq);
+  return intensity * (cosine * emissionLobe(meanNormal, omniFraction, -w) / distanceSq);
+}
+
+#endif

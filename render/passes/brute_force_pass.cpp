@@ -1,0 +1,38 @@
+#include "render/passes/brute_force_pass.h"
+
+#include <algorithm>
+
+#include "render/gl/debug.h"
+#include "shared/bindings.h"
+#include "shared/lgh_types.h"
+
+namespace lgh {
+
+BruteForcePass::BruteForcePass() : program_(gl::Program::compute("brute_force.comp")) {
+  GLint64 maxBlock = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+  GLint alignment = 256;
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
+  const size_t step = std::max<size_t>(1, size_t(alignment) / sizeof(gpu::GpuLight));
+  maxBlockLights_ = std::max(size_t(std::max<GLint64>(maxBlock, 1 << 24)) / sizeof(gpu::GpuLight) / step * step, step);
+}
+
+void BruteForcePass::execute(const GBuffer& gbuffer, const gl::Buffer& lights, size_t lightCount, float clampDistance,
+                             gl::Texture2D& irradiance) const {
+  irradiance.clear(glm::vec4(0.0f));
+  gbuffer.bindForReading();
+  irradiance.bindImage(0, GL_READ_WRITE);
+  program_.set("clampDistance", clampDistance);
+  // One storage block at a time; the shader adds each chunk's sum into the image.
+  for (size_t first = 0; first < lightCount; first += maxBlockLights_) {
+    const size_t n = std::min(maxBlockLights_, lightCount - first);
+    lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight), n * sizeof(gpu::GpuLight));
+    program_.set("lightCount", unsigned(n));
+    program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+  gl::checkErrors("brute-force pass");
+}
+
+}  // namespace lgh

@@ -1,0 +1,24 @@
+#pragma once
+// The exact unshadowed sum over every input light at every pixel, in a compute shader: the reference
+// the light pass is measured against (same G-buffer, same shading and clamp, no rasterization).
+//   in:  GBuffer (position, normal), S0 lights, frame uniforms
+//   out: irradiance (RGBA32F, rgb; a = 0)
+
+#include "render/gl/buffer.h"
+#include "render/gl/program.h"
+#include "render/passes/gbuffer_pass.h"
+
+namespace lgh {
+
+class BruteForcePass {
+ public:
+  BruteForcePass();
+  void execute(const GBuffer& gbuffer, const gl::Buffer& lights, size_t lightCount, float clampDistance,
+               gl::Texture2D& irradiance) const;
+
+ private:
+  gl::Program program_;
+  size_t maxBlockLights_ = 0;
+};
+
+}  // namespace lgh

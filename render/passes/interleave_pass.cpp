@@ -1,0 +1,60 @@
+#include "render/passes/interleave_pass.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "render/gl/debug.h"
+
+namespace lgh {
+
+TileLayout TileLayout::of(int tilesPerAxis, int width, int height) {
+  if (tilesPerAxis < 1 || tilesPerAxis > 8)
+    throw std::invalid_argument("interleave: " + std::to_string(tilesPerAxis) + " tiles per axis (use 1 to 8)");
+  TileLayout t;
+  t.tilesPerAxis = tilesPerAxis;
+  t.imageSize = {width, height};
+  t.tileSize = (t.imageSize + tilesPerAxis - 1) / tilesPerAxis;  // the last tiles get padding
+  return t;
+}
+
+Tiles::Tiles(const TileLayout& l)
+    : layout(l),
+      position(l.targetSize().x, l.targetSize().y, GL_RGBA32F),
+      normal(l.targetSize().x, l.targetSize().y, GL_RGBA16F),
+      irradiance(l.targetSize().x, l.targetSize().y, GL_RGBA32F),
+      fragmentCounts(l.targetSize().x, l.targetSize().y, GL_R32UI) {}
+
+InterleavePass::InterleavePass()
+    : split_(gl::Program::compute("deinterleave.comp")), resolve_(gl::Program::compute("interleave_resolve.comp")) {}
+
+void InterleavePass::split(const GBuffer& gbuffer, Tiles& tiles) const {
+  const TileLayout& l = tiles.layout;
+  gbuffer.bindForReading();
+  tiles.position.bindImage(0, GL_WRITE_ONLY);
+  tiles.normal.bindImage(1, GL_WRITE_ONLY);
+  split_.set("tilesPerAxis", unsigned(l.tilesPerAxis));
+  split_.set("tileSize", glm::uvec2(l.tileSize));
+  split_.dispatch2D(l.targetSize().x, l.targetSize().y, {8, 8});
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  gl::checkErrors("interleave split");
+}
+
+void InterleavePass::resolve(const GBuffer& gbuffer, const Tiles& tiles, const InterleaveFilter& filter,
+                             bool countFragments, gl::Texture2D& irradiance, gl::Texture2D& fragmentCounts) const {
+  const TileLayout& l = tiles.layout;
+  gbuffer.bindForReading();
+  tiles.irradiance.bindTexture(4);
+  tiles.fragmentCounts.bindTexture(5);
+  irradiance.bindImage(0, GL_WRITE_ONLY);
+  fragmentCounts.bindImage(1, GL_WRITE_ONLY);
+  resolve_.set("tilesPerAxis", unsigned(l.tilesPerAxis));
+  resolve_.set("tileSize", glm::uvec2(l.tileSize));
+  resolve_.set("countFragments", int(countFragments));
+  resolve_.set("normalPower", filter.normalPower);
+  resolve_.set("planeSigma", std::max(filter.planeSigma, 1e-6f));
+  resolve_.dispatch2D(l.imageSize.x, l.imageSize.y, {8, 8});
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  gl::checkErrors("interleave resolve");
+}
+
+}  // namespace lgh

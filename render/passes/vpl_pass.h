@@ -1,0 +1,44 @@
+#pragma once
+// Generates the input lights S0 on the GPU:
+//   tracePaths:             light paths from every emitter (chosen by power) through the BVH, an
+//                           oriented VPL at each diffuse hit, up to `bounces` per path
+//   sampleEmissiveTriangles: points on emissive triangles as oriented direct lights
+//   in:  SceneGpu (BVH, materials, textures, punctual lights), the emitter tables built from the Scene
+//   out: gpu::GpuLight records appended to a buffer from `offset` on
+
+#include <cstdint>
+
+#include "render/gl/buffer.h"
+#include "render/gl/program.h"
+#include "render/scene/emitters.h"
+#include "render/scene/scene_gpu.h"
+
+namespace lgh {
+
+class VplPass {
+ public:
+  explicit VplPass(const SceneGpu& scene);
+
+  // Traces ceil(budget / bounces) paths; each deposits at most `bounces` VPLs, so at most
+  // maxVplCount(budget, bounces) are written (that many in a closed scene): `out` must have room for
+  // them all, since dropping any would depend on thread order. Returns the number written.
+  size_t tracePaths(gl::Buffer& out, size_t offset, size_t budget, int bounces, std::uint32_t seed);
+  // `count` points on emissive triangles (chosen by power). Returns the number written.
+  size_t sampleEmissiveTriangles(gl::Buffer& out, size_t offset, size_t count, std::uint32_t seed);
+
+  const EmitterTable& emitters() const { return allEmitters_; }
+  const EmitterTable& emissiveTriangles() const { return triangleEmitters_; }
+  static size_t pathCount(size_t budget, int bounces) { return (budget + size_t(bounces) - 1) / size_t(bounces); }
+  static size_t maxVplCount(size_t budget, int bounces) { return pathCount(budget, bounces) * size_t(bounces); }
+
+ private:
+  size_t run(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset, size_t capacity,
+             size_t samples, int bounces, std::uint32_t seed);
+
+  const SceneGpu& scene_;
+  EmitterTable allEmitters_, triangleEmitters_;
+  gl::Buffer allEmitterBuffer_, triangleEmitterBuffer_, counter_;
+  gl::Program paths_, emitterSamples_;
+};
+
+}  // namespace lgh

@@ -1,0 +1,215 @@
+// The light pass against exact answers. The rasterized brute force (every S0 light full-screen) must
+// equal the compute-shader sum; the LGH image must equal the CPU evaluator (lgh/evaluate.h) on the
+// same hierarchy at the same surface points, and converge to the exact sum as alpha grows; the
+// fragment counts and interleaving must account for every light exactly once.
+#include <cmath>
+#include <cstdio>
+
+#include "gl_test_env.h"
+#include "lgh/evaluate.h"
+#include "render/image_compare.h"
+#include "render/passes/brute_force_pass.h"
+#include "render/renderer.h"
+#include "render/scene/scene_gpu.h"
+#include "shared/lgh_types.h"
+
+namespace lgh::test {
+namespace {
+
+struct SceneOnGpu {
+  explicit SceneOnGpu(const std::filesystem::path& path) : scene(loadScene(path)), gpu(scene) {}
+  Scene scene;
+  SceneGpu gpu;
+};
+
+RenderSettings smallSettings(int vpls) {
+  RenderSettings s;
+  s.width = 160;
+  s.height = 90;
+  s.vpls = vpls;
+  s.bounces = 2;
+  s.emitterSamples = 4096;
+  return s;
+}
+
+struct Frame {
+  ImageRGBA irradiance;
+  FrameStats stats;
+};
+
+Frame renderIrradiance(Renderer& renderer, const Scene& scene) {
+  const RenderSettings& s = renderer.settings();
+  Frame f;
+  f.stats = renderer.render(makeCameraView(resolveCamera(scene, s), s.width, s.height));
+  EXPECT_EQ(f.stats.nonFinitePixels, 0u);
+  f.irradiance = renderer.readImage(Aov::Irradiance);
+  return f;
+}
+
+// The exact unshadowed sum over the renderer's input lights, on its G-buffer (compute shader).
+ImageRGBA exactIrradiance(const Renderer& renderer) {
+  static BruteForcePass bruteForce;
+  const RenderSettings& s = renderer.settings();
+  gl::Texture2D out(s.width, s.height, GL_RGBA32F);
+  bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
+                     renderer.clampDistance(), out);
+  return fromGLRows(s.width, s.height, out.readRGBA());
+}
+
+class LightPassTest : public GLTest {};
+
+TEST_F(LightPassTest, RasterizedBruteForceEqualsComputeSum) {
+  SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
+  RenderSettings settings = smallSettings(3000);
+  settings.bruteForce = true;
+  settings.overdraw = true;
+  Renderer renderer(s.gpu, settings);
+  const Frame raster = renderIrradiance(renderer, s.scene);
+  const ImageRGBA exact = exactIrradiance(renderer);
+  const double scale = meanLuminance(exact);
+  ASSERT_GT(scale, 0.0);
+  for (size_t i = 0; i < exact.pixels.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      ASSERT_NEAR(raster.irradiance.pixels[i][k], exact.pixels[i][k], 1e-4 * (exact.pixels[i][k] + scale)) << "pixel " << i;
+  // Every light's full-screen triangle covers every pixel exactly once.
+  EXPECT_DOUBLE_EQ(raster.stats.lights.rasterizedPerPixel, double(renderer.inputLights().count));
+  EXPECT_EQ(raster.stats.lights.maxRasterized, unsigned(renderer.inputLights().count));
+}
+
+// Each pixel of the light pass equals lgh::evaluateHierarchy (double precision) at that pixel's
+// surface, with the CPU S1+gather hierarchy built from the same input lights, for both first levels.
+TEST_F(LightPassTest, MatchesCpuEvaluatorPixelByPixel) {
+  SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
+  for (int firstLevel : {1, 0}) {
+    SCOPED_TRACE("first level " + std::to_string(firstLevel));
+    RenderSettings settings = smallSettings(4000);
+    settings.startLevel = firstLevel;
+    settings.alpha = 1.0f;
+    Renderer renderer(s.gpu, settings);
+    const Frame frame = renderIrradiance(renderer, s.scene);
+    const ImageRGBA position = renderer.readImage(Aov::Position), normal = renderer.readImage(Aov::Normal);
+
+    const std::vector<Light> lights =
+        fromGpuLights(renderer.inputLights().lights.download<gpu::GpuLight>(renderer.inputLights().count));
+    const Hierarchy cpu = buildGather(lights, renderer.hierarchy().grid);
+    EvalOptions options;
+    options.alpha = settings.alpha;
+    options.clampDistance = renderer.clampDistance();
+    options.firstLevel = firstLevel;
+    const double scale = meanLuminance(frame.irradiance);
+    ASSERT_GT(scale, 0.0);
+    int checked = 0;
+    for (size_t i = 0; i < position.pixels.size(); i += 17) {
+      if (position.pixels[i].w == 0.0f) continue;
+      const glm::dvec3 x(position.pixels[i]), n(normal.pixels[i]);
+      const glm::dvec3 expected = evaluateHierarchy(cpu, lights, x, &n, options);
+      for (int k = 0; k < 3; ++k)
+        EXPECT_NEAR(frame.irradiance.pixels[i][k], expected[k], 2e-3 * (expected[k] + scale)) << "pixel " << i;
+      ++checked;
+    }
+    EXPECT_GT(checked, 300);
+  }
+}
+
+// Relative RMSE of the LGH image against the exact sum for alpha = 0.5, 1, 2, 4 (DESIGN 7).
+//  * Start level 0 (S0 blended as the finest level): the error must fall with every step of alpha and
+//    tends to zero (alpha -> infinity weights S0 alone). Measured at alpha = 2 on 160x90 with 20K-VPL
+//    budgets: Cornell 0.047, Sponza 0.061, emissive Cornell 0.043; pinned at 0.08 (about 1.3-1.9x the
+//    measurements: a wrong radius, role or lobe moves it by far more, see the alpha = 1 values).
+//  * Start level 1 (the paper's default): alpha only moves the boundaries between levels; within R_1
+//    the S1 clusters replace the VPLs, so the error falls to a plateau set by the S1 cell size
+//    (measured 0.144 / 0.545 / 0.345 at alpha 2; smaller as the VPL count grows and S1 gets finer).
+//    It must not grow with alpha, and alpha = 2 is pinned at 1.15x the measurement.
+struct ConvergenceCase {
+  const char* name;
+  std::filesystem::path path;
+  double startLevel1Alpha2Bound;
+};
+
+void expectConvergence(const ConvergenceCase& c) {
+  SceneOnGpu s(c.path);
+  RenderSettings settings = smallSettings(20000);
+  Renderer renderer(s.gpu, settings);
+  for (int startLevel : {0, 1}) {
+    double previous = 1e30;
+    for (float alpha : {0.5f, 1.0f, 2.0f, 4.0f}) {
+      settings.alpha = alpha;
+      settings.startLevel = startLevel;
+      renderer.setSettings(settings);
+      const Frame frame = renderIrradiance(renderer, s.scene);
+      const double error = relativeRmse(frame.irradiance, exactIrradiance(renderer));
+      std::printf("  %-8s start level %d  alpha %-4.3g relative RMSE %.4f  (%zu input lights, L = %d)\n", c.name,
+                  startLevel, double(alpha), error, frame.stats.lights.inputLights, frame.stats.lights.levels);
+      if (startLevel == 0) {
+        EXPECT_LT(error, previous) << "alpha " << alpha;
+        if (alpha == 2.0f) {
+          EXPECT_LT(error, 0.08) << "start level 0";
+        }
+      } else {
+        EXPECT_LT(error, previous * 1.001) << "alpha " << alpha;
+        if (alpha == 2.0f) {
+          EXPECT_LT(error, c.startLevel1Alpha2Bound) << "start level 1";
+        }
+      }
+      previous = error;
+    }
+  }
+}
+
+TEST_F(LightPassTest, ErrorFallsWithAlphaOnCornellBox) {
+  expectConvergence({"cornell", sourceDir() / "data/cornell_box.gltf", 0.166});
+}
+
+TEST_F(LightPassTest, ErrorFallsWithAlphaOnSponza) {
+  LGH_REQUIRE_SHARED_SCENE(path, "sponza_sun/sponza_sun.gltf");
+  expectConvergence({"sponza", path, 0.627});
+}
+
+TEST_F(LightPassTest, ErrorFallsWithAlphaOnEmissiveCornellBox) {
+  LGH_REQUIRE_SHARED_SCENE(path, "cornell_emissive/cornell_emissive.gltf");
+  expectConvergence({"emissive", path, 0.397});
+}
+
+// Interleaving draws each light into one of n^2 tiles with n^2 times its intensity: the image's
+// mean (its energy) stays that of the 1x1 pass on a scene of smooth, large surfaces.
+TEST_F(LightPassTest, InterleavingPreservesEnergy) {
+  SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
+  RenderSettings settings = smallSettings(20000);
+  settings.overdraw = true;
+  Renderer renderer(s.gpu, settings);
+  const Frame reference = renderIrradiance(renderer, s.scene);
+  const double referenceMean = meanLuminance(reference.irradiance);
+  for (int n : {2, 4}) {
+    settings.interleave = n;
+    renderer.setSettings(settings);
+    const Frame frame = renderIrradiance(renderer, s.scene);
+    const double mean = meanLuminance(frame.irradiance);
+    std::printf("  interleave %dx%d: mean %.6g vs %.6g (1x1), relative RMSE vs 1x1 %.4f, fragments/pixel %.1f vs %.1f\n",
+                n, n, mean, referenceMean, relativeRmse(frame.irradiance, reference.irradiance),
+                frame.stats.lights.rasterizedPerPixel, reference.stats.lights.rasterizedPerPixel);
+    EXPECT_NEAR(mean, referenceMean, 0.01 * referenceMean) << n << "x" << n;
+  }
+}
+
+// With n x n interleaving each brute-force light covers exactly one tile: every pixel is rasterized
+// by lightCount / n^2 lights (to within one: the tiles' shares differ by one when n^2 does not divide
+// the count), however the lights lie in the image.
+TEST_F(LightPassTest, InterleavedBruteForceDrawsEachLightIntoOneTile) {
+  SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
+  RenderSettings settings = smallSettings(0);
+  settings.emitterSamples = 0;
+  settings.vpls = 3200;
+  settings.bounces = 1;
+  settings.bruteForce = true;
+  settings.overdraw = true;
+  settings.interleave = 4;
+  Renderer renderer(s.gpu, settings);
+  const Frame frame = renderIrradiance(renderer, s.scene);
+  const size_t count = renderer.inputLights().count;
+  ASSERT_GT(count, 1000u);
+  EXPECT_NEAR(frame.stats.lights.rasterizedPerPixel, double(count) / 16.0, 1.0);
+  EXPECT_LE(frame.stats.lights.maxRasterized, unsigned((count + 15) / 16));
+}
+
+}  // namespace
+}  // namespace lgh::test
