@@ -1,0 +1,53 @@
+// lgh-bench: the project's benchmarks, one subcommand each.
+//   lgh-bench build [--lights 1K,10K,100K,1M --repeats N --csv F --json F ...]   (paper Tables 1 and 2)
+//   lgh-bench light [--vpls 1K,10K,100K,1M --interleave-vpls 100K ...]           (paper Fig. 5, interleaving)
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <iostream>
+#include <vector>
+
+#include "bench/build_bench.h"
+#include "bench/light_bench.h"
+
+namespace {
+
+// A benchmark as main sees it: the subcommand it registered, and how to run it once chosen.
+struct Benchmark {
+  CLI::App* command;
+  std::function<int()> run;
+};
+
+int run(int argc, char** argv) {
+  CLI::App app{"lgh-bench: benchmarks of the lighting grid hierarchy renderer"};
+  app.require_subcommand(1);
+
+  // Options live here, for the whole run; a new benchmark adds its options and one Benchmark line.
+  lgh::bench::BuildBenchOptions buildOptions;
+  lgh::bench::LightBenchOptions lightOptions;
+  const std::vector<Benchmark> benchmarks = {
+      {lgh::bench::addBuildCommand(app, buildOptions), [&] { return lgh::bench::runBuildBench(buildOptions); }},
+      {lgh::bench::addLightCommand(app, lightOptions), [&] { return lgh::bench::runLightBench(lightOptions); }},
+  };
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // --help prints and returns 0; every other parse error prints its message on stderr.
+    return app.exit(e) == 0 ? 0 : 1;
+  }
+  for (const Benchmark& benchmark : benchmarks)
+    if (benchmark.command->parsed()) return benchmark.run();
+  return 1;  // unreachable: require_subcommand(1)
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "lgh-bench: error: " << e.what() << "\n";
+    return 1;
+  }
+}
