@@ -1,5 +1,5 @@
 #version 450 core
-// Direct light from the scene's punctual lights (all, or all but the point lights): exact, one ray-traced shadow ray per light per pixel.
+// Direct light from punctual lights (the scene's, or all but its point lights): exact, one ray-traced shadow ray per light per pixel.
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
@@ -11,7 +11,6 @@ layout(std430, binding = LGH_BINDING_PUNCTUAL_LIGHTS) readonly buffer PunctualLi
 layout(rgba32f, binding = 0) uniform writeonly image2D directOut;
 uniform uint lightCount;
 uniform bool shadows;
-uniform bool skipPointLights;  // point lights went to the LGH as input lights (many-light scenes)
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -21,7 +20,6 @@ void main() {
   if (s.valid) {
     vec3 origin = offsetRayOrigin(s.position, s.normal);
     for (uint i = 0u; i < lightCount; ++i) {
-      if (skipPointLights && lights[i].type == kLightPoint) continue;
       LightSample ls = samplePunctual(lights[i], s.position, s.normal);
       if (ls.cosTheta <= 0.0 || all(equal(ls.irradiance, vec3(0.0)))) continue;
       if (shadows && traceAnyHit(origin, ls.direction, 0.0, ls.distance)) continue;

@@ -14,11 +14,14 @@ class DirectLightPass {
  public:
   DirectLightPass();
   // skipPointLights: point lights are shaded elsewhere (through the LGH, when there are many).
-  void execute(const SceneGpu& scene, const GBuffer& gbuffer, bool shadows, bool skipPointLights,
-               gl::Texture2D& out) const;
+  void execute(const SceneGpu& scene, const GBuffer& gbuffer, bool shadows, bool skipPointLights, gl::Texture2D& out);
 
  private:
   gl::Program program_;
+  // The lights shaded here when point lights are skipped (uploaded once, bound in place of the scene's).
+  gl::Buffer nonPointLights_;
+  size_t nonPointLightCount_ = 0;
+  bool nonPointLightsUploaded_ = false;
 };
 
 }  // namespace lgh
