@@ -1,6 +1,7 @@
 // lgh-bench: the project's benchmarks, one subcommand each.
 //   lgh-bench build [--lights 1K,10K,100K,1M --repeats N --csv F --json F ...]   (paper Tables 1 and 2)
 //   lgh-bench light [--vpls 1K,10K,100K,1M --interleave-vpls 100K ...]           (paper Fig. 5, interleaving)
+//   lgh-bench frame [--vpls 100K --shadow-samples 4 --interleave 1,2,4 ...]        (paper Table 3)
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "bench/build_bench.h"
+#include "bench/frame_bench.h"
 #include "bench/light_bench.h"
 
 namespace {
@@ -25,9 +27,11 @@ int run(int argc, char** argv) {
   // Options live here, for the whole run; a new benchmark adds its options and one Benchmark line.
   lgh::bench::BuildBenchOptions buildOptions;
   lgh::bench::LightBenchOptions lightOptions;
+  lgh::bench::FrameBenchOptions frameOptions;
   const std::vector<Benchmark> benchmarks = {
       {lgh::bench::addBuildCommand(app, buildOptions), [&] { return lgh::bench::runBuildBench(buildOptions); }},
       {lgh::bench::addLightCommand(app, lightOptions), [&] { return lgh::bench::runLightBench(lightOptions); }},
+      {lgh::bench::addFrameCommand(app, frameOptions), [&] { return lgh::bench::runFrameBench(frameOptions); }},
   };
 
   try {

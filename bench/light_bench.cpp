@@ -43,20 +43,6 @@ struct InterleaveRow {
   double errorVsExact = -1;         // against the exact unshadowed sum (-1: not measured)
 };
 
-std::filesystem::path chooseScene(const LightBenchOptions& options, std::string& why) {
-  if (!options.scene.empty()) {
-    why = "--scene";
-    return options.scene;
-  }
-  const std::filesystem::path sponza = defaultBenchScene();
-  if (std::filesystem::exists(sponza)) {
-    why = "the default scene";
-    return sponza;
-  }
-  why = "the project's Cornell box: " + sponza.string() + " is not there";
-  return std::filesystem::path(LGH_DATA_DIR) / "cornell_box.gltf";
-}
-
 double lightPassTotal(const FrameStats& s) {
   return s.passMs("interleave split") + s.passMs("light pass") + s.passMs("interleave resolve");
 }
@@ -113,7 +99,7 @@ int runLightBench(const LightBenchOptions& options) {
   if (!options.jsonPath.empty()) json = open(options.jsonPath);
 
   std::string why;
-  const std::filesystem::path path = chooseScene(options, why);
+  const std::filesystem::path path = chooseRenderScene(options.scene, why);
   const Scene scene = loadScene(path);
   const auto context = gl::Context::create(contextOptions);
   const SceneGpu sceneGpu(scene);

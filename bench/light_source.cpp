@@ -19,6 +19,19 @@ std::filesystem::path defaultBenchScene() {
   return (std::filesystem::path(LGH_SHARED_SCENES_DIR) / "sponza_sun" / "sponza_sun.gltf").lexically_normal();
 }
 
+std::filesystem::path chooseRenderScene(const std::string& option, std::string& why) {
+  if (!option.empty()) {
+    why = "--scene";
+    return option;
+  }
+  if (std::filesystem::exists(defaultBenchScene())) {
+    why = "the default scene";
+    return defaultBenchScene();
+  }
+  why = "the project's Cornell box: " + defaultBenchScene().string() + " is not there";
+  return std::filesystem::path(LGH_DATA_DIR) / "cornell_box.gltf";
+}
+
 LightSource LightSource::onSurfaces(const std::filesystem::path& path) {
   LightSource source;
   source.scene_ = loadScene(path);

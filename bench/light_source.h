@@ -15,6 +15,9 @@ namespace lgh::bench {
 
 // The scene the benchmarks use when none is named, if ../shared/scenes is beside the checkout.
 std::filesystem::path defaultBenchScene();
+// The scene a rendering benchmark uses: `option` if given, else the default scene if it is there, else
+// the project's Cornell box; `why` says which and why, for the output.
+std::filesystem::path chooseRenderScene(const std::string& option, std::string& why);
 
 class LightSource {
  public:

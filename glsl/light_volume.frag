@@ -1,10 +1,16 @@
 #version 450 core
+#if defined(LGH_SELECT_SHADOWS) && !defined(LGH_SELECTION_NO_ATOMICS)
+#extension GL_NV_shader_atomic_float : require
+#endif
 // Shades one grid light at the surface under this pixel: irradiance weighted by the light's blending
 // function (DESIGN 4), added into the target. Albedo is applied at compositing, so interleaving and
 // filtering work on smooth irradiance, not on textured radiance.
 #include "shared/frame.glsl"
 #include "shared/light_pass_types.h"
 #include "shared/lgh_shading.glsl"
+#ifdef LGH_SELECT_SHADOWS
+#include "shared/shadow_selection.glsl"
+#endif
 
 layout(std140, binding = LGH_UBO_PASS) uniform LightPass { LightPassUniforms pass; };
 // The G-buffer in the target's layout (de-interleaved into tiles when interleaving).
@@ -18,7 +24,7 @@ flat in vec3 lightPosition;
 flat in vec3 lightIntensity;
 flat in vec4 lightLobe;
 flat in vec2 lightBlend;
-flat in uint lightIndex;
+flat in uint lightId;  // kSlotS0 | S0 index, or merged grid-light index
 
 layout(location = 0) out vec4 irradiance;  // rgb irradiance; a counts shaded fragments
 
@@ -36,4 +42,13 @@ void main() {
   vec3 e = lightContribution(lightPosition, lightIntensity, lightLobe.xyz, lightLobe.w, position.xyz, n,
                              pass.alphaTopCellClampScale.z);
   irradiance = vec4(blend * e, 1.0);
+#ifdef LGH_SELECT_SHADOWS
+  bool finest = uint(lightBlend.y) == kRoleFinest;
+  if (!(finest && (pass.selection.y & kSelectSkipFinest) != 0u)) {
+    float importance = dot(irradiance.rgb, vec3(0.2126, 0.7152, 0.0722));
+    if ((pass.selection.y & kSelectUniform) != 0u && importance > 0.0) importance = 1.0;
+    uint pixelIndex = uint(pixel.y) * (pass.tiles.x * pass.tiles.y) + uint(pixel.x);
+    selectShadowSample(pixelIndex, lightId, importance, pass.selection.x, pass.selection.z);
+  }
+#endif
 }

@@ -24,7 +24,7 @@ flat out vec3 lightPosition;
 flat out vec3 lightIntensity;
 flat out vec4 lightLobe;    // xyz mean normal, w omni fraction
 flat out vec2 lightBlend;   // x: R, y: role
-flat out uint lightIndex;   // in its buffer (for shadow-sample selection)
+flat out uint lightId;      // for shadow-sample selection: kSlotS0 | S0 index, or grid-light index
 
 // 12 triangles of the unit cube [-1,1]^3, counter-clockwise seen from outside: culling front faces
 // leaves exactly one (back) face under every covered pixel, also with the camera inside the cube.
@@ -41,15 +41,16 @@ uint levelOf(uint index) {
 
 void main() {
   uint index = pass.levels.z + uint(gl_InstanceID);
-  lightIndex = index;
   uint level = levelOf(index);
 #ifdef LGH_S0_INPUT
+  lightId = kSlotS0 | (index + pass.tiles.w);
   GpuLight l = lights[index];
   lightPosition = l.position;
   lightIntensity = l.intensity;
   bool oriented = (l.flags & kLightOriented) != 0u;
   lightLobe = oriented ? vec4(octDecode(l.normalOct), 0.0) : vec4(0.0, 0.0, 0.0, 1.0);
 #else
+  lightId = index;
   GpuGridLight l = lights[index];
   lightPosition = l.position;
   lightIntensity = l.intensity;

@@ -16,7 +16,7 @@ struct AovName {
   const char* name;
 };
 constexpr AovName kAovNames[] = {{Aov::Final, "final"},         {Aov::Direct, "direct"},     {Aov::Indirect, "indirect"},
-                                 {Aov::Irradiance, "irradiance"}, {Aov::Overdraw, "overdraw"}, {Aov::Emission, "emission"},
+                                 {Aov::Irradiance, "irradiance"}, {Aov::Ratio, "ratio"}, {Aov::Visibility, "visibility"}, {Aov::Overdraw, "overdraw"}, {Aov::Emission, "emission"},
                                  {Aov::Albedo, "albedo"},       {Aov::Normal, "normal"},     {Aov::Position, "position"}};
 
 // A perceptual heat map (magma-like: black, purple, orange, pale yellow) of t in [0, 1].
@@ -45,7 +45,7 @@ std::vector<std::string> aovNames() {
 }
 
 bool isDataAov(Aov aov) {
-  return aov == Aov::Overdraw || aov == Aov::Albedo || aov == Aov::Normal || aov == Aov::Position;
+  return aov == Aov::Overdraw || aov == Aov::Ratio || aov == Aov::Visibility || aov == Aov::Albedo || aov == Aov::Normal || aov == Aov::Position;
 }
 
 double FrameStats::totalMs() const {
@@ -71,7 +71,8 @@ Renderer::Renderer(const SceneGpu& scene, const RenderSettings& settings)
       settings_(settings),
       frameUniforms_(sizeof(gpu::FrameUniforms)),
       inputLightsPass_(scene),
-      buildPass_(GLAD_GL_NV_shader_atomic_float != 0) {
+      buildPass_(GLAD_GL_NV_shader_atomic_float != 0),
+      lightPass_(GLAD_GL_NV_shader_atomic_float != 0) {
   allocateTargets();
 }
 
@@ -90,6 +91,10 @@ void Renderer::allocateTargets() {
   irradiance_ = gl::Texture2D(w, h, GL_RGBA32F);
   fragmentCounts_ = gl::Texture2D(w, h, GL_R32UI);
   fragmentCounts_.clearUint(0);
+  rawRatio_ = gl::Texture2D(w, h, GL_RGBA32F);
+  rawRatio_.clear(glm::vec4(1.0f));
+  visibility_ = gl::Texture2D(w, h, GL_RGBA32F);
+  visibility_.clear(glm::vec4(1.0f));
   indirect_ = gl::Texture2D(w, h, GL_RGBA32F);
   final_ = gl::Texture2D(w, h, GL_RGBA32F);
   gl::checkErrors("allocating render targets");
@@ -173,7 +178,13 @@ FrameStats Renderer::render(const CameraView& view) {
     options.clampDistance = clampDistance();
     options.bruteForce = settings_.bruteForce;
     options.countFragments = settings_.overdraw;
+    options.shadowSamples = settings_.shadowSamples;
+    options.skipFinestForShadows = settings_.shadowSkipFinest;
+    options.uniformSelection = settings_.shadowUniform;
+    options.frameSeed = frameIndex_ * 0x9e3779b9u + unsigned(settings_.seed);
     const bool interleaved = settings_.interleave > 1;
+    const TileLayout layout = interleaved ? tiles_.layout : TileLayout::of(1, settings_.width, settings_.height);
+    if (options.shadowSamples > 0) shadowSlots_.allocate(layout.targetSize(), options.shadowSamples);
     if (interleaved) {
       gl::Profiler::Scope pass(profiler_, "interleave split");
       interleavePass_.split(gbuffer_, tiles_);
@@ -181,14 +192,30 @@ FrameStats Renderer::render(const CameraView& view) {
     {
       gl::Profiler::Scope pass(profiler_, "light pass");
       LightPassTarget target =
-          interleaved ? LightPassTarget{tiles_.position, tiles_.normal, tiles_.layout, tiles_.irradiance, &tiles_.fragmentCounts}
-                      : LightPassTarget{gbuffer_.position, gbuffer_.normal, TileLayout::of(1, settings_.width, settings_.height),
-                                        irradiance_, &fragmentCounts_};
+          interleaved ? LightPassTarget{tiles_.position, tiles_.normal, layout, tiles_.irradiance, &tiles_.fragmentCounts, &shadowSlots_}
+                      : LightPassTarget{gbuffer_.position, gbuffer_.normal, layout, irradiance_, &fragmentCounts_, &shadowSlots_};
       stats.lights.lightsPerLevel = lightPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, options, target).lightsPerLevel;
     }
     if (interleaved) {
       gl::Profiler::Scope pass(profiler_, "interleave resolve");
       interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, settings_.overdraw, irradiance_, fragmentCounts_);
+    }
+    if (options.shadowSamples > 0) {
+      {
+        gl::Profiler::Scope pass(profiler_, "shadow rays");
+        ShadowRayOptions rays;
+        rays.spread = settings_.shadowSpread;
+        rays.frameSeed = options.frameSeed;
+        shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, layout, inputLights_.lights, hierarchy_, options, rays,
+                               rawRatio_);
+      }
+      gl::Profiler::Scope pass(profiler_, "shadow filter");
+      ShadowFilterOptions filter;
+      filter.passes = settings_.filterPasses;
+      filter.normalPower = settings_.filterNormalPower;
+      filter.planeSigma = settings_.filterPlaneSigma;
+      filter.ratioSigma = settings_.filterRatioSigma;
+      shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, filter, visibility_);
     }
     stats.lights.inputLights = inputLights_.count;
     stats.lights.pointLights = inputLights_.pointLights;
@@ -199,7 +226,8 @@ FrameStats Renderer::render(const CameraView& view) {
   {
     gl::Profiler::Scope pass(profiler_, "composite");
     stats.nonFinitePixels =
-        compositePass_.execute(gbuffer_, direct_, indirect ? &irradiance_ : nullptr, nullptr, indirect_, final_);
+        compositePass_.execute(gbuffer_, direct_, indirect ? &irradiance_ : nullptr,
+                               indirect && settings_.shadowSamples > 0 ? &visibility_ : nullptr, indirect_, final_);
   }
   stats.passes = profiler_.collect();
   if (indirect && settings_.overdraw) measureOverdraw(stats.lights);
@@ -230,6 +258,8 @@ const gl::Texture2D& Renderer::texture(Aov aov) const {
     case Aov::Direct: return direct_;
     case Aov::Indirect: return indirect_;
     case Aov::Irradiance: return irradiance_;
+    case Aov::Ratio: return rawRatio_;
+    case Aov::Visibility: return visibility_;
     case Aov::Overdraw: return fragmentCounts_;
     case Aov::Emission: return gbuffer_.emission;
     case Aov::Albedo: return gbuffer_.albedo;
@@ -249,7 +279,10 @@ ImageRGBA Renderer::readImage(Aov aov) const {
     return fromGLRows(fragmentCounts_.width(), fragmentCounts_.height(), colors);
   }
   const gl::Texture2D& t = texture(aov);
-  return fromGLRows(t.width(), t.height(), t.readRGBA());
+  std::vector<glm::vec4> pixels = t.readRGBA();
+  if (aov == Aov::Ratio || aov == Aov::Visibility)  // the ratio (r) as grey
+    for (glm::vec4& p : pixels) p = glm::vec4(glm::vec3(p.r), 1.0f);
+  return fromGLRows(t.width(), t.height(), std::move(pixels));
 }
 
 }  // namespace lgh

@@ -16,6 +16,7 @@
 #include "render/passes/input_lights_pass.h"
 #include "render/passes/interleave_pass.h"
 #include "render/passes/lgh_build_pass.h"
+#include "render/passes/shadow_pass.h"
 #include "render/passes/light_volume_pass.h"
 #include "render/settings.h"
 
@@ -25,7 +26,9 @@ namespace lgh {
 //   indirect    radiance through the LGH, unshadowed (albedo / pi x irradiance)
 //   irradiance  the light pass's irradiance (before albedo)
 //   overdraw    heat map of fragments rasterized per pixel in the light pass (needs settings.overdraw)
-enum class Aov { Final, Direct, Indirect, Irradiance, Overdraw, Emission, Albedo, Normal, Position };
+//   ratio       raw visibility ratio of the indirect light (mean of the k shadow rays)
+//   visibility  the filtered ratio that multiplies the indirect light
+enum class Aov { Final, Direct, Indirect, Irradiance, Ratio, Visibility, Overdraw, Emission, Albedo, Normal, Position };
 Aov parseAov(const std::string& name);
 std::vector<std::string> aovNames();
 // AOVs that hold data rather than radiance: written without exposure or tone curve.
@@ -69,6 +72,7 @@ class Renderer {
   // The input lights and hierarchy in use (built by the first render()).
   const InputLights& inputLights() const { return inputLights_; }
   const GpuHierarchy& hierarchy() const { return hierarchy_; }
+  const ShadowSlots& shadowSlots() const { return shadowSlots_; }  // the last frame's selection
 
  private:
   void allocateTargets();
@@ -91,6 +95,8 @@ class Renderer {
   LghBuildPass buildPass_;
   InterleavePass interleavePass_;
   LightVolumePass lightPass_;
+  ShadowRayPass shadowRayPass_;
+  ShadowFilterPass shadowFilterPass_;
   CompositePass compositePass_;
 
   // Built when the lights or the hierarchy's settings change, not every frame.
@@ -106,6 +112,9 @@ class Renderer {
   Tiles tiles_;                  // interleaved surfaces and light-pass targets (n > 1)
   gl::Texture2D irradiance_;     // LGH irradiance, full resolution
   gl::Texture2D fragmentCounts_; // R32UI, light-pass fragments per pixel (settings.overdraw)
+  ShadowSlots shadowSlots_;      // k selected lights per light-pass pixel
+  gl::Texture2D rawRatio_;       // r: visibility ratio from the shadow rays
+  gl::Texture2D visibility_;     // r: filtered ratio
   gl::Texture2D indirect_;       // albedo / pi x irradiance, unshadowed
   gl::Texture2D final_;
 };

@@ -31,6 +31,16 @@ struct RenderSettings {
   int interleave = 1;          // n x n interleaved sampling
   bool overdraw = false;       // count fragments per pixel (AOV "overdraw")
   bool bruteForce = false;     // every S0 light at every pixel, weight 1 (exact unshadowed)
+
+  // Indirect shadows.
+  int shadowSamples = 4;       // k shadow rays per pixel; 0: indirect light unshadowed
+  bool shadowSkipFinest = true;  // the finest level blended (S1) is not picked for shadow rays
+  bool shadowUniform = false;  // pick lights uniformly instead of by contribution (for comparison)
+  float shadowSpread = 1.0f;   // jitter of a cluster's shadow-ray target, in its standard deviations
+  int filterPasses = 5;        // a-trous passes over the shadow ratio; 0: unfiltered
+  float filterNormalPower = 64.0f;
+  float filterPlaneSigma = 1.0f;
+  float filterRatioSigma = 0.25f;
 };
 
 struct SettingInfo {
@@ -61,6 +71,14 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(s.interleave, SettingInfo{"interleave", "n x n interleaved sampling of the light pass (1, 2, 4)", 1, 8});
   visit(s.overdraw, SettingInfo{"overdraw", "count fragments per pixel in the light pass (AOV overdraw, summary)"});
   visit(s.bruteForce, SettingInfo{"brute-force", "shade every input light at every pixel with weight 1 (exact unshadowed sum; slow)"});
+  visit(s.shadowSamples, SettingInfo{"shadow-samples", "k: shadow rays per pixel for indirect light (0 = unshadowed)", 0, 16});
+  visit(s.shadowSkipFinest, SettingInfo{"shadow-skip-finest", "do not pick lights of the finest level blended (S1) for shadow rays"});
+  visit(s.shadowUniform, SettingInfo{"shadow-uniform", "pick shadow lights uniformly instead of by contribution"});
+  visit(s.shadowSpread, SettingInfo{"shadow-spread", "jitter of a cluster's shadow-ray target, in its standard deviations", 0, 16});
+  visit(s.filterPasses, SettingInfo{"filter-passes", "a-trous passes over the shadow ratio (0 = raw ratio)", 0, 8});
+  visit(s.filterNormalPower, SettingInfo{"filter-normal-power", "a-trous normal weight max(0, n.n')^p", 0, 1024});
+  visit(s.filterPlaneSigma, SettingInfo{"filter-plane-sigma", "a-trous tangent-plane distance weight, in pixel footprints", 0.01, 1000});
+  visit(s.filterRatioSigma, SettingInfo{"filter-ratio-sigma", "a-trous shadow-ratio difference weight", 0.001, 100});
 }
 
 }  // namespace lgh

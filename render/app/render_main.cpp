@@ -106,6 +106,10 @@ int run(int argc, char** argv) {
       else
         std::printf("LGH        L = %d, alpha %.3g, start level %d, interleave %dx%d, drawn%s\n", ls.levels,
                     double(settings.alpha), settings.startLevel, settings.interleave, settings.interleave, perLevel.c_str());
+      if (settings.shadowSamples > 0)
+        std::printf("shadows    k = %d per pixel (%s), %s, filter %d passes\n", settings.shadowSamples,
+                    settings.shadowUniform ? "uniform" : "by contribution",
+                    settings.shadowSkipFinest ? "finest level skipped" : "all levels", settings.filterPasses);
       if (settings.overdraw)
         std::printf("overdraw   %.1f fragments rasterized per pixel (max %u), %.1f shaded\n", ls.rasterizedPerPixel,
                     ls.maxRasterized, ls.shadedPerPixel);

@@ -8,7 +8,9 @@
 
 namespace lgh {
 
-BruteForcePass::BruteForcePass() : program_(gl::Program::compute("brute_force.comp")) {
+BruteForcePass::BruteForcePass()
+    : program_(gl::Program::compute("brute_force.comp")),
+      shadowed_(gl::Program::compute("brute_force.comp", {{"LGH_SHADOWED", "1"}})) {
   GLint64 maxBlock = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
   GLint alignment = 256;
@@ -18,17 +20,19 @@ BruteForcePass::BruteForcePass() : program_(gl::Program::compute("brute_force.co
 }
 
 void BruteForcePass::execute(const GBuffer& gbuffer, const gl::Buffer& lights, size_t lightCount, float clampDistance,
-                             gl::Texture2D& irradiance) const {
+                             gl::Texture2D& irradiance, const SceneGpu* shadowedIn) const {
+  const gl::Program& program = shadowedIn ? shadowed_ : program_;
+  if (shadowedIn) shadowedIn->bindForCompute();
   irradiance.clear(glm::vec4(0.0f));
   gbuffer.bindForReading();
   irradiance.bindImage(0, GL_READ_WRITE);
-  program_.set("clampDistance", clampDistance);
+  program.set("clampDistance", clampDistance);
   // One storage block at a time; the shader adds each chunk's sum into the image.
   for (size_t first = 0; first < lightCount; first += maxBlockLights_) {
     const size_t n = std::min(maxBlockLights_, lightCount - first);
     lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight), n * sizeof(gpu::GpuLight));
-    program_.set("lightCount", unsigned(n));
-    program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
+    program.set("lightCount", unsigned(n));
+    program.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   }
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);

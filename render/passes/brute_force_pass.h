@@ -1,23 +1,25 @@
 #pragma once
 // The exact unshadowed sum over every input light at every pixel, in a compute shader: the reference
 // the light pass is measured against (same G-buffer, same shading and clamp, no rasterization).
-//   in:  GBuffer (position, normal), S0 lights, frame uniforms
+//   in:  GBuffer (position, normal), S0 lights, frame uniforms (and the scene's BVH when shadowed)
 //   out: irradiance (RGBA32F, rgb; a = 0)
 
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
 #include "render/passes/gbuffer_pass.h"
+#include "render/scene/scene_gpu.h"
 
 namespace lgh {
 
 class BruteForcePass {
  public:
   BruteForcePass();
+  // shadowed: one shadow ray per light per pixel through the scene's BVH (exact shadowed reference).
   void execute(const GBuffer& gbuffer, const gl::Buffer& lights, size_t lightCount, float clampDistance,
-               gl::Texture2D& irradiance) const;
+               gl::Texture2D& irradiance, const SceneGpu* shadowedIn = nullptr) const;
 
  private:
-  gl::Program program_;
+  gl::Program program_, shadowed_;
   size_t maxBlockLights_ = 0;
 };
 

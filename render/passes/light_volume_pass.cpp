@@ -25,7 +25,18 @@ size_t LightPassDraws::lightsDrawn() const {
   return std::accumulate(lightsPerLevel.begin(), lightsPerLevel.end(), size_t(0));
 }
 
-LightVolumePass::LightVolumePass() {
+void ShadowSlots::allocate(glm::ivec2 targetSize, int samples) {
+  if (samples < 0 || samples > int(gpu::kMaxShadowSamples))
+    throw std::invalid_argument("shadow samples: " + std::to_string(samples) + " (use 0 to " +
+                                std::to_string(gpu::kMaxShadowSamples) + ")");
+  const size_t pixels = size_t(targetSize.x) * size_t(targetSize.y);
+  gl::ensureSize(totals, std::max<size_t>(pixels, 1) * sizeof(float));
+  gl::ensureSize(slots, std::max<size_t>(pixels * size_t(std::max(samples, 1)), 1) * sizeof(GLuint));
+  k = samples;
+  size = targetSize;
+}
+
+LightVolumePass::LightVolumePass(bool floatAtomics) : floatAtomics_(floatAtomics) {
   GLint alignment = 256;
   glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
   uniformStride_ = (sizeof(gpu::LightPassUniforms) + size_t(alignment) - 1) / size_t(alignment) * size_t(alignment);
@@ -44,14 +55,18 @@ LightVolumePass::LightVolumePass() {
   gl::checkErrors("light pass setup");
 }
 
-const gl::Program& LightVolumePass::program(bool s0Input, bool countFragments) {
-  gl::Program& p = programs_[size_t(s0Input) * 2 + size_t(countFragments)];
-  if (!p) {
-    gl::Defines defines;
-    if (s0Input) defines.emplace_back("LGH_S0_INPUT", "1");
-    if (countFragments) defines.emplace_back("LGH_COUNT_OVERDRAW", "1");
-    p = gl::Program::graphics("light_volume.vert", "light_volume.frag", defines);
+const gl::Program& LightVolumePass::program(bool s0Input, const LightPassOptions& options) {
+  gl::Defines defines;
+  if (s0Input) defines.emplace_back("LGH_S0_INPUT", "1");
+  if (options.countFragments) defines.emplace_back("LGH_COUNT_OVERDRAW", "1");
+  if (options.shadowSamples > 0) {
+    defines.emplace_back("LGH_SELECT_SHADOWS", "1");
+    if (!floatAtomics_) defines.emplace_back("LGH_SELECTION_NO_ATOMICS", "1");
   }
+  std::string key;
+  for (const auto& d : defines) key += d.first + ";";
+  gl::Program& p = programs_[key];
+  if (!p) p = gl::Program::graphics("light_volume.vert", "light_volume.frag", defines);
   return p;
 }
 
@@ -59,6 +74,10 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
                                         const LightPassOptions& options, LightPassTarget& target) {
   if (options.countFragments && !target.fragmentCounts)
     throw std::invalid_argument("light pass: counting fragments needs a fragment-count target");
+  if (options.shadowSamples > 0 &&
+      (!target.shadowSlots || target.shadowSlots->k != options.shadowSamples ||
+       target.shadowSlots->size != target.layout.targetSize()))
+    throw std::invalid_argument("light pass: shadow selection needs slots allocated for the target and k");
   if (options.firstLevel != 0 && options.firstLevel != 1)
     throw std::invalid_argument("light pass: the first level is 0 (S0) or 1 (S1), not " +
                                 std::to_string(options.firstLevel));
@@ -108,6 +127,10 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
     u.image = glm::uvec4(unsigned(target.layout.imageSize.x), unsigned(target.layout.imageSize.y),
                          unsigned(options.bruteForce), 0u);
     for (int l = 1; l <= L; ++l) u.levelOffsets[l / 4][l % 4] = unsigned(hierarchy.levels[size_t(l)].offset);
+    u.selection = glm::uvec4(unsigned(options.shadowSamples),
+                             (options.skipFinestForShadows ? gpu::kSelectSkipFinest : 0u) |
+                                 (options.uniformSelection ? gpu::kSelectUniform : 0u),
+                             options.frameSeed, 0u);
     std::memcpy(staging.data() + i * uniformStride_, &u, sizeof(u));
   }
   uniforms_.update(staging.data(), staging.size());
@@ -122,6 +145,12 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
   if (options.countFragments) {
     target.fragmentCounts->clearUint(0);
     target.fragmentCounts->bindImage(0, GL_READ_WRITE);
+  }
+  if (options.shadowSamples > 0) {
+    target.shadowSlots->totals.clear();
+    target.shadowSlots->slots.clearUint(gpu::kNoLight);
+    target.shadowSlots->totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+    target.shadowSlots->slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   }
   target.position.bindTexture(0);
   target.normal.bindTexture(1);
@@ -140,7 +169,7 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
     const size_t stride = d.s0Input ? sizeof(gpu::GpuLight) : sizeof(gpu::GpuGridLight);
     d.buffer->bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, d.boundOffset * stride, d.boundLights * stride);
     uniforms_.bindRange(GL_UNIFORM_BUFFER, LGH_UBO_PASS, i * uniformStride_, sizeof(gpu::LightPassUniforms));
-    program(d.s0Input, options.countFragments).use();
+    program(d.s0Input, options).use();
     // Cubes cull their front faces; the full-screen triangle faces the camera and must not be culled.
     if (d.fullScreen)
       glDisable(GL_CULL_FACE);
@@ -155,7 +184,7 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl::checkErrors("light pass");
   return counts;
 }

@@ -9,7 +9,8 @@
 //        optionally the count of every fragment rasterized per pixel (overdraw)
 // Brute force draws every S0 light full-screen with weight 1: the unshadowed exact sum, rasterized.
 
-#include <array>
+#include <map>
+#include <string>
 
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
@@ -25,6 +26,21 @@ struct LightPassOptions {
   float clampDistance = 0.0f;  // d_c
   bool bruteForce = false;     // every S0 light, full-screen, weight 1 (ignores the hierarchy)
   bool countFragments = false; // count every rasterized fragment per pixel (an image atomic each)
+  // Shadow-sample selection (DESIGN 5): k slots per pixel, filled in proportion to each light's
+  // contribution (or uniformly, for comparison); 0 = no selection.
+  int shadowSamples = 0;
+  bool skipFinestForShadows = true;  // the paper: S1 lights are not picked for shadow rays
+  bool uniformSelection = false;
+  unsigned frameSeed = 0;
+};
+
+// Per pixel of the light pass's target: the running importance total and k selected lights.
+struct ShadowSlots {
+  gl::Buffer totals;  // float per pixel
+  gl::Buffer slots;   // uint per pixel and slot: gpu::kSlotS0 | S0 index, grid-light index, or kNoLight
+  int k = 0;
+  glm::ivec2 size{0};  // the target's size (tiled when interleaving)
+  void allocate(glm::ivec2 targetSize, int samples);
 };
 
 // The surfaces a light pass shades and the targets it writes, all in the same (tiled or not) layout.
@@ -34,6 +50,7 @@ struct LightPassTarget {
   TileLayout layout;                // n x n tiles; 1: the image itself
   gl::Texture2D& irradiance;        // RGBA32F
   gl::Texture2D* fragmentCounts;    // R32UI, required with countFragments
+  ShadowSlots* shadowSlots;         // required with shadowSamples > 0
 };
 
 struct LightPassDraws {
@@ -43,16 +60,18 @@ struct LightPassDraws {
 
 class LightVolumePass {
  public:
-  LightVolumePass();
+  // floatAtomics: GL_NV_shader_atomic_float is available (the selection's running total uses it).
+  explicit LightVolumePass(bool floatAtomics);
 
   LightPassDraws execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
                          const LightPassOptions& options, LightPassTarget& target);
 
  private:
   struct Draw;
-  const gl::Program& program(bool s0Input, bool countFragments);
+  const gl::Program& program(bool s0Input, const LightPassOptions& options);
 
-  std::array<gl::Program, 4> programs_;  // [s0Input * 2 + countFragments], compiled on first use
+  bool floatAtomics_;
+  std::map<std::string, gl::Program> programs_;  // by their defines, compiled on first use
   gl::Buffer uniforms_;                  // one LightPassUniforms per draw, at aligned offsets
   size_t uniformStride_ = 0;
   size_t maxBlockLights_ = 0;            // S0 lights per storage block binding

@@ -29,6 +29,7 @@ RenderSettings smallSettings(int vpls) {
   s.vpls = vpls;
   s.bounces = 2;
   s.emitterSamples = 4096;
+  s.shadowSamples = 0;  // these tests read the unshadowed irradiance
   return s;
 }
 

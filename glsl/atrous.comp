@@ -1,0 +1,73 @@
+#version 450 core
+// Edge-avoiding a-trous wavelet filter (Dammertz et al. 2010) of the shadow ratio, as a ratio
+// estimator (Heitz et al. 2018): the shadowed (S = U x raw ratio) and unshadowed (U) luminances are
+// filtered with the same weights and divided at the end, so the ratio is averaged in proportion to
+// the light each neighbour receives.
+//   stage 0: (raw ratio, irradiance) -> (S, U)
+//   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U)
+//   stage 2: (S, U) -> filtered ratio S / U; the raw ratio where no neighbour received light (U = 0)
+layout(local_size_x = 8, local_size_y = 8) in;
+#include "shared/frame.glsl"
+#include "shared/gbuffer.glsl"
+
+layout(binding = 4) uniform sampler2D signalIn;    // stage 0: raw ratio (r); 1, 2: (S, U) in r, g
+layout(binding = 5) uniform sampler2D irradiance;  // unshadowed irradiance (stage 0), raw ratio (stage 2)
+layout(rgba32f, binding = 0) uniform writeonly image2D signalOut;
+uniform int stage;
+uniform int stepSize;
+uniform float normalPower;   // weight max(0, n.n')^normalPower
+uniform float planeSigma;    // tangent-plane distance, in pixel footprints x stepSize, at weight e^-1/2
+uniform float ratioSigma;    // ratio difference at weight e^-1/2 (from the second pass on: the first
+                             // pass sees raw ratios, with k = 1 only 0 or 1, which would stop every tap)
+
+float luminanceOf(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = ivec2(frame.resolution.xy);
+  if (any(greaterThanEqual(pixel, size))) return;
+  if (stage == 0) {
+    float u = max(luminanceOf(texelFetch(irradiance, pixel, 0).rgb), 0.0);
+    float r = texelFetch(signalIn, pixel, 0).r;
+    imageStore(signalOut, pixel, vec4(u * r, u, r, 1.0));
+    return;
+  }
+  vec4 centre = texelFetch(signalIn, pixel, 0);
+  if (stage == 2) {
+    float raw = texelFetch(irradiance, pixel, 0).r;
+    // S <= U tap by tap (a ratio is at most 1), so S / U stays in [0, 1] however small U is; only
+    // U = 0 (denormals flushed) has no quotient.
+    float ratio = centre.g > 0.0 ? centre.r / centre.g : raw;
+    imageStore(signalOut, pixel, vec4(clamp(ratio, 0.0, 1.0), 0.0, 0.0, 1.0));
+    return;
+  }
+  Surface s = loadSurface(pixel);
+  if (!s.valid) {
+    imageStore(signalOut, pixel, centre);
+    return;
+  }
+  const float kernel[3] = float[](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
+  float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30) * float(stepSize);
+  float centreRatio = centre.g > 0.0 ? centre.r / centre.g : centre.b;
+  vec2 sum = vec2(0.0);
+  float weightSum = 0.0;
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      ivec2 q = pixel + ivec2(dx, dy) * stepSize;
+      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+      vec4 qPosition = texelFetch(gPosition, q, 0);
+      if (qPosition.w == 0.0) continue;
+      vec4 v = texelFetch(signalIn, q, 0);
+      float qRatio = v.g > 0.0 ? v.r / v.g : v.b;
+      float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
+      float dr = stepSize > 1 ? (qRatio - centreRatio) / ratioSigma : 0.0;
+      float w = kernel[abs(dx)] * kernel[abs(dy)] *
+                pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) *
+                exp(-0.5 * (plane * plane + dr * dr));
+      sum += w * v.rg;
+      weightSum += w;
+    }
+  }
+  // The centre tap has weight (3/8)^2 > 0, so weightSum > 0. b keeps the raw ratio for the guards.
+  imageStore(signalOut, pixel, vec4(sum / weightSum, centre.b, 1.0));
+}

@@ -1,0 +1,42 @@
+// Streaming shadow-sample selection in the light pass (Lin & Yuksel 2019, Appendix A; DESIGN 5).
+// Each pixel keeps a running importance total F and k slots. A fragment of importance f adds f to F
+// and then, independently for each slot, takes the slot with probability f / F. In any order this
+// leaves light i in a slot with probability f_i / sum f (a weighted reservoir of size 1 per slot).
+//
+// Concurrent fragments of one pixel: F is advanced with one atomic add, which puts the fragments in
+// a single order and hands each its own prefix total; the slot write is an atomic exchange. The
+// result is exact when the exchanges land in the order of the adds, which holds whenever a pixel's
+// fragments are shaded one after another (llvmpipe shades each tile on one thread, in primitive
+// order; GPUs shade overlapping fragments of one pixel in order for blending, but their SSBO writes
+// are not ordered, so two fragments shaded together can swap: a bias bounded by how often two
+// fragments of one pixel are in flight at once). Without float atomics (LGH_SELECTION_NO_ATOMICS)
+// it is the paper's plain read-modify-write, exact under the same in-order condition.
+#ifndef LGH_SHADOW_SELECTION_GLSL
+#define LGH_SHADOW_SELECTION_GLSL
+#include "shared/light_pass_types.h"
+#include "shared/sampling.glsl"
+
+layout(std430, binding = LGH_BINDING_PASS1) coherent buffer ShadowTotals { float shadowTotals[]; };
+layout(std430, binding = LGH_BINDING_PASS2) coherent buffer ShadowSlots { uint shadowSlots[]; };
+
+void selectShadowSample(uint pixelIndex, uint lightId, float importance, uint k, uint frameSeed) {
+  if (importance <= 0.0 || k == 0u) return;
+#ifdef LGH_SELECTION_NO_ATOMICS
+  float total = shadowTotals[pixelIndex] + importance;
+  shadowTotals[pixelIndex] = total;
+#else
+  float total = atomicAdd(shadowTotals[pixelIndex], importance) + importance;
+#endif
+  // Independent uniforms per (pixel, light, slot, frame): a stateless hash, no stored RNG.
+  Rng rng = makeRng(lightId * 2654435761u ^ pixelIndex, frameSeed);
+  for (uint j = 0u; j < k; ++j) {
+    if (nextFloat(rng) * total < importance) {
+#ifdef LGH_SELECTION_NO_ATOMICS
+      shadowSlots[pixelIndex * k + j] = lightId;
+#else
+      atomicExchange(shadowSlots[pixelIndex * k + j], lightId);
+#endif
+    }
+  }
+}
+#endif

@@ -1,0 +1,72 @@
+#include "render/passes/shadow_pass.h"
+
+#include <utility>
+
+#include "render/gl/debug.h"
+#include "shared/bindings.h"
+
+namespace lgh {
+
+ShadowRayPass::ShadowRayPass() : program_(gl::Program::compute("shadow_rays.comp")) {}
+
+void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const ShadowSlots& slots,
+                            const TileLayout& layout, const gl::Buffer& inputLights, const GpuHierarchy& hierarchy,
+                            const LightPassOptions& lightPass, const ShadowRayOptions& options,
+                            gl::Texture2D& rawRatio) const {
+  scene.bindForCompute();
+  gbuffer.bindForReading();
+  inputLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  slots.slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  // A buffer must be bound even when there is no hierarchy (brute force): the input lights stand in.
+  (hierarchy.gridLights ? hierarchy.gridLights : inputLights).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+  rawRatio.bindImage(0, GL_WRITE_ONLY);
+  program_.set("samples", unsigned(slots.k));
+  program_.set("tilesPerAxis", unsigned(layout.tilesPerAxis));
+  program_.set("tileSize", glm::uvec2(layout.tileSize));
+  program_.set("spread", options.spread);
+  program_.set("uniformSelection", int(lightPass.uniformSelection));
+  program_.set("clampDistance", lightPass.clampDistance);
+  program_.set("alpha", lightPass.alpha);
+  program_.set("topCellSize", float(hierarchy.grid.topCellSize));
+  program_.set("firstLevel", unsigned(lightPass.firstLevel));
+  program_.set("levels", unsigned(std::max(hierarchy.grid.levels, 0)));
+  program_.set("bruteForce", int(lightPass.bruteForce));
+  program_.set("frameSeed", options.frameSeed);
+  program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  gl::checkErrors("shadow rays");
+}
+
+ShadowFilterPass::ShadowFilterPass() : program_(gl::Program::compute("atrous.comp")) {}
+
+void ShadowFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& rawRatio, const gl::Texture2D& irradiance,
+                               const ShadowFilterOptions& options, gl::Texture2D& filteredRatio) {
+  if (ping_.width() != gbuffer.width || ping_.height() != gbuffer.height) {
+    ping_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
+    pong_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
+  }
+  gbuffer.bindForReading();
+  program_.set("normalPower", options.normalPower);
+  program_.set("planeSigma", std::max(options.planeSigma, 1e-6f));
+  program_.set("ratioSigma", std::max(options.ratioSigma, 1e-6f));
+  auto run = [&](int stage, const gl::Texture2D& in, const gl::Texture2D& second, gl::Texture2D& out, int step) {
+    in.bindTexture(4);
+    second.bindTexture(5);
+    out.bindImage(0, GL_WRITE_ONLY);
+    program_.set("stage", stage);
+    program_.set("stepSize", step);
+    program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  };
+  run(0, rawRatio, irradiance, ping_, 1);
+  gl::Texture2D* in = &ping_;
+  gl::Texture2D* out = &pong_;
+  for (int i = 0; i < options.passes; ++i) {
+    run(1, *in, irradiance, *out, 1 << i);
+    std::swap(in, out);
+  }
+  run(2, *in, rawRatio, filteredRatio, 1);
+  gl::checkErrors("shadow filter");
+}
+
+}  // namespace lgh

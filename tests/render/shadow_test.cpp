@@ -1,0 +1,184 @@
+// Indirect shadows: the light pass picks each light for a shadow slot with probability f_i / sum f
+// (chi-square over many frames, k = 1 and 4, with and without interleaving), and importance-picked
+// shadow rays estimate the exact shadowed image better than uniformly picked ones (paper Figs. 7-8).
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "gl_test_env.h"
+#include "gltf_writer.h"
+#include "lgh/shading.h"
+#include "render/image_compare.h"
+#include "render/passes/brute_force_pass.h"
+#include "render/renderer.h"
+#include "render/scene/scene_gpu.h"
+#include "shared/light_pass_types.h"
+
+namespace lgh::test {
+namespace {
+
+// A grey floor under 12 point lights of different colours, heights and strengths, seen from above.
+std::filesystem::path writeLitFloor(const TempDir& dir) {
+  GltfWriter w;
+  const int grey = w.addMaterial(MaterialDesc{}.withBaseColor({0.5f, 0.5f, 0.5f, 1}));
+  w.addNode(NodeDesc{}.withMesh(w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, grey)})));
+  for (int i = 0; i < 12; ++i) {
+    const float a = 0.5236f * float(i);
+    w.addNode(NodeDesc{}
+                  .withLight(w.addLight(LightDesc{}.withIntensity(0.5 + 0.4 * i).withColor({1.0, 0.3 + 0.05 * i, 0.8})))
+                  .translated({1.2f * std::cos(a), 0.3f + 0.15f * float(i % 5), 1.2f * std::sin(a)}));
+  }
+  w.addNode(NodeDesc{}
+                .withCamera(w.addCamera(CameraDesc{}.named("top").withYfov(1.0).withClip(0.1, 100)))
+                .translated({0, 5, 0})
+                .rotated(glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0))));
+  return w.write(dir / "floor.gltf");
+}
+
+class ShadowTest : public GLTest {
+ protected:
+  TempDir dir;
+};
+
+// Chi-square with pooled degrees of freedom over a few pixels; the 1% critical values are tabulated
+// for the dof these configurations produce.
+double chiSquareCritical01(int dof) {
+  static const std::map<int, double> table{{22, 40.29}, {33, 54.78}, {44, 68.71}, {8, 20.09}, {12, 26.22}, {16, 32.00}};
+  return table.at(dof);
+}
+
+TEST_F(ShadowTest, SelectionFrequenciesFollowContributions) {
+  const Scene scene = loadScene(writeLitFloor(dir));
+  const SceneGpu gpu(scene);
+  for (int n : {1, 2}) {
+    for (int k : {1, 4}) {
+      SCOPED_TRACE("interleave " + std::to_string(n) + ", k = " + std::to_string(k));
+      RenderSettings settings;
+      settings.width = settings.height = 8;
+      settings.maxDirectLights = 0;  // the 12 point lights are S0
+      settings.vpls = 0;
+      settings.emitterSamples = 0;
+      settings.bruteForce = true;    // every light at every pixel: selection among all S0 lights
+      settings.interleave = n;
+      settings.shadowSamples = k;
+      Renderer renderer(gpu, settings);
+      const CameraView view = makeCameraView(resolveCamera(scene, settings), 8, 8);
+      renderer.render(view);
+      const ImageRGBA position = renderer.readImage(Aov::Position), normal = renderer.readImage(Aov::Normal);
+      ASSERT_EQ(renderer.inputLights().count, 12u);
+      const TileLayout layout = TileLayout::of(n, 8, 8);
+
+      const std::vector<glm::ivec2> pixels{{1, 1}, {6, 2}, {3, 5}, {5, 6}};
+      const int frames = 600 / k;
+      std::vector<std::vector<int>> counts(pixels.size(), std::vector<int>(12, 0));
+      for (int f = 0; f < frames; ++f) {
+        if (f > 0) renderer.render(view);
+        const std::vector<GLuint> slots = renderer.shadowSlots().slots.download<GLuint>(
+            size_t(layout.targetSize().x * layout.targetSize().y * k));
+        for (size_t p = 0; p < pixels.size(); ++p) {
+          const glm::ivec2 q = pixels[p];
+          // GL rows are bottom-up: image row y is GL row 7 - y.
+          const glm::ivec2 gl(q.x, 7 - q.y);
+          const glm::ivec2 tiled = (gl % n) * layout.tileSize + gl / n;
+          const size_t index = size_t(tiled.y * layout.targetSize().x + tiled.x);
+          for (int j = 0; j < k; ++j) {
+            const GLuint id = slots[index * size_t(k) + size_t(j)];
+            ASSERT_NE(id, gpu::kNoLight);
+            ASSERT_TRUE(id & gpu::kSlotS0);
+            ++counts[p][id & ~gpu::kSlotS0];
+          }
+        }
+      }
+      // Expected: each light's luminance contribution at the pixel, among the lights of its tile.
+      double chiSquare = 0;
+      int dof = 0;
+      for (size_t p = 0; p < pixels.size(); ++p) {
+        const glm::ivec2 q = pixels[p], gl(q.x, 7 - q.y);
+        const int tile = (gl.x % n) + n * (gl.y % n);
+        const glm::dvec3 x(position.at(q.x, q.y)), nx(normal.at(q.x, q.y));
+        std::vector<double> f(12, 0.0);
+        double total = 0;
+        for (int i = 0; i < 12; ++i) {
+          if (i % (n * n) != tile) continue;  // lights are dealt to tiles by index within the level
+          const gpu::GpuPunctualLight& l = gpu.punctualLights()[size_t(i)];
+          f[size_t(i)] = luminance(lightContribution(glm::dvec3(l.position), glm::dvec3(l.intensity), glm::dvec3(0.0), 1.0,
+                                                      x, &nx, renderer.clampDistance()));
+          total += f[size_t(i)];
+        }
+        const int samples = frames * k;
+        for (int i = 0; i < 12; ++i) {
+          if (f[size_t(i)] == 0.0) {
+            EXPECT_EQ(counts[p][size_t(i)], 0) << "light " << i << " is not in this pixel's tile";
+            continue;
+          }
+          const double expected = samples * f[size_t(i)] / total;
+          chiSquare += (counts[p][size_t(i)] - expected) * (counts[p][size_t(i)] - expected) / expected;
+          ++dof;
+        }
+        --dof;
+      }
+      std::printf("  interleave %dx%d, k = %d: chi-square %.1f with %d dof (1%% critical %.1f)\n", n, n, k, chiSquare, dof,
+                  chiSquareCritical01(dof));
+      EXPECT_LT(chiSquare, chiSquareCritical01(dof));
+    }
+  }
+}
+
+// Paper Figs. 7-8: shadowed indirect light (unshadowed x visibility ratio) against the exact shadowed
+// sum (one ray per light per pixel), with lights picked by contribution or uniformly. The light pass
+// runs as brute force so the comparison isolates the shadow estimate.
+TEST_F(ShadowTest, ImportanceSelectionBeatsUniform) {
+  const Scene scene = loadScene(sourceDir() / "data/cornell_box.gltf");
+  const SceneGpu gpu(scene);
+  RenderSettings settings;
+  settings.width = 96;
+  settings.height = 54;
+  settings.vpls = 3000;
+  settings.bounces = 1;
+  settings.bruteForce = true;
+  Renderer renderer(gpu, settings);
+  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.width, settings.height);
+  renderer.render(view);
+
+  static BruteForcePass bruteForce;
+  gl::Texture2D exactTexture(settings.width, settings.height, GL_RGBA32F);
+  bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
+                     renderer.clampDistance(), exactTexture, &gpu);
+  const ImageRGBA exact = fromGLRows(settings.width, settings.height, exactTexture.readRGBA());
+
+  auto shadowedError = [&](bool uniform, int k, int filterPasses) {
+    settings.shadowUniform = uniform;
+    settings.shadowSamples = k;
+    settings.filterPasses = filterPasses;
+    renderer.setSettings(settings);
+    renderer.render(view);
+    ImageRGBA shadowed = renderer.readImage(Aov::Irradiance);
+    const ImageRGBA ratio = renderer.readImage(Aov::Visibility);
+    for (size_t i = 0; i < shadowed.pixels.size(); ++i) shadowed.pixels[i] *= ratio.pixels[i].r;
+    return relativeRmse(shadowed, exact);
+  };
+  std::map<std::string, double> e;
+  for (int passes : {0, 5}) {
+    for (int k : {1, 4}) {
+      for (bool uniform : {false, true}) {
+        const std::string key = std::string(uniform ? "uniform" : "importance") + " k=" + std::to_string(k) +
+                                (passes ? " filtered" : " raw");
+        e[key] = shadowedError(uniform, k, passes);
+        std::printf("  %-26s relative RMSE %.4f\n", key.c_str(), e[key]);
+      }
+    }
+  }
+  // The paper's claim, for the pipeline's output (filtered ratio). Measured: importance k=1 0.078,
+  // uniform k=4 0.139. Unfiltered the two are even (0.32 each): one binary visibility sample against
+  // four contribution-weighted ones.
+  EXPECT_LT(e["importance k=1 filtered"], e["uniform k=4 filtered"]);
+  EXPECT_LT(e["importance k=1 raw"], e["uniform k=1 raw"]);
+  EXPECT_LT(e["importance k=4 raw"], e["uniform k=4 raw"]);
+  EXPECT_LT(e["importance k=4 raw"], e["importance k=1 raw"]);
+  EXPECT_LT(e["importance k=4 filtered"], e["importance k=4 raw"]);
+}
+
+}  // namespace
+}  // namespace lgh::test
