@@ -64,7 +64,7 @@ CLI::App* addLightCommand(CLI::App& app, LightBenchOptions& options) {
       ->capture_default_str();
   command->add_option("--bounces", options.bounces, "bounces per light path")->check(CLI::Range(1, 3))->capture_default_str();
   command->add_option("--alpha", options.alpha, "LGH alpha")->check(CLI::Range(0.25, 16.0))->capture_default_str();
-  command->add_option("--clamp-distance", options.clampDistance, "d_c (0: 1e-3 x the scene diagonal)")
+  command->add_option("--clamp-distance", options.clampDistance, "d_c (0: 1e-2 x the scene diagonal)")
       ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
   command->add_option("--start-level", options.startLevel, "finest level blended (0 or 1)")

@@ -19,7 +19,7 @@ struct LightBenchOptions {
   std::vector<size_t> vplCounts{1000, 10000, 100000, 1000000};
   int bounces = 1;
   float alpha = 1.0f;
-  float clampDistance = 0.0f;  // 0: the renderer's default (1e-3 of the scene diagonal)
+  float clampDistance = 0.0f;  // 0: the renderer's default (1e-2 of the scene diagonal)
   int startLevel = 1;
   int repeats = 3;
   size_t bruteForceLimit = 20000;   // brute-force light pass timed up to this many input lights

@@ -7,18 +7,35 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "shared/display_encode.h"
+
 namespace lgh {
 namespace {
-
-float srgbEncode(float linear) {
-  linear = std::clamp(linear, 0.0f, 1.0f);
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
 
 std::string lowerExtension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return ext;
+}
+
+// Writes 3-channel pixels (rows top-down) beside the target, then renames: an interrupted write never
+// clobbers an existing image. FLOAT data is linear HDR; UINT8 data is display-encoded sRGB.
+void writePixels(const std::filesystem::path& path, int width, int height, OIIO::TypeDesc type, const void* pixels) {
+  const std::filesystem::path temporary =
+      path.parent_path() / (".tmp-" + path.filename().stem().string() + lowerExtension(path));
+  auto out = OIIO::ImageOutput::create(temporary.string());
+  if (!out) throw std::runtime_error(path.string() + ": cannot create an image writer (" + OIIO::geterror() + ")");
+  OIIO::ImageSpec spec(width, height, 3, type);
+  if (type == OIIO::TypeDesc::UINT8) spec.attribute("oiio:ColorSpace", "sRGB");
+  const bool ok = out->open(temporary.string(), spec) && out->write_image(type, pixels) && out->close();
+  if (!ok) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw std::runtime_error(path.string() + ": writing failed (" + out->geterror() + ")");
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) throw std::runtime_error(path.string() + ": could not move the finished image into place (" + ec.message() + ")");
 }
 
 }  // namespace
@@ -43,19 +60,12 @@ bool isHdrFormat(const std::filesystem::path& path) {
   return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
 }
 
+static_assert(std::uint32_t(ToneMap::Clamp) == gpu::kToneMapClamp && std::uint32_t(ToneMap::Reinhard) == gpu::kToneMapReinhard &&
+                  std::uint32_t(ToneMap::Aces) == gpu::kToneMapAces,
+              "ToneMap must list the curves in the order of shared/display_encode.h");
+
 glm::vec3 displayEncode(const glm::vec3& linear, float exposureEV, ToneMap toneMap) {
-  glm::vec3 c = glm::max(linear, glm::vec3(0.0f)) * std::exp2(exposureEV);
-  switch (toneMap) {
-    case ToneMap::Clamp:
-      break;
-    case ToneMap::Reinhard:
-      c = c / (glm::vec3(1.0f) + c);
-      break;
-    case ToneMap::Aces:  // Narkowicz's fit of the ACES filmic curve
-      c = (c * (2.51f * c + 0.03f)) / (c * (2.43f * c + 0.59f) + 0.14f);
-      break;
-  }
-  return {srgbEncode(c.r), srgbEncode(c.g), srgbEncode(c.b)};
+  return gpu::encodeForDisplay(linear, exposureEV, std::uint32_t(toneMap));
 }
 
 void checkImagePath(const std::filesystem::path& path) {
@@ -71,42 +81,31 @@ void checkImagePath(const std::filesystem::path& path) {
 
 void writeImage(const std::filesystem::path& path, const ImageRGBA& image, float exposureEV, ToneMap toneMap) {
   checkImagePath(path);
-  const std::string ext = lowerExtension(path);
-  const bool hdr = isHdrFormat(path);
   const size_t count = size_t(image.width) * size_t(image.height);
   const int channels = 3;
-  std::vector<float> linear;
-  std::vector<unsigned char> display;
-  if (hdr) {
-    linear.resize(count * channels);
+  if (isHdrFormat(path)) {
+    std::vector<float> linear(count * channels);
     for (size_t i = 0; i < count; ++i)
       for (int c = 0; c < channels; ++c) linear[i * channels + size_t(c)] = image.pixels[i][c];
+    writePixels(path, image.width, image.height, OIIO::TypeDesc::FLOAT, linear.data());
   } else {
-    display.resize(count * channels);
+    std::vector<std::uint8_t> display(count * channels);
     for (size_t i = 0; i < count; ++i) {
       const glm::vec3 e = displayEncode(glm::vec3(image.pixels[i]), exposureEV, toneMap);
       for (int c = 0; c < channels; ++c) display[i * channels + size_t(c)] = (unsigned char)std::lround(e[c] * 255.0f);
     }
+    writePixels(path, image.width, image.height, OIIO::TypeDesc::UINT8, display.data());
   }
+}
 
-  // Write beside the target, then rename: an interrupted write never clobbers an existing image.
-  const std::filesystem::path temporary = path.parent_path() / (".tmp-" + path.filename().stem().string() + ext);
-  auto out = OIIO::ImageOutput::create(temporary.string());
-  if (!out) throw std::runtime_error(path.string() + ": cannot create an image writer (" + OIIO::geterror() + ")");
-  OIIO::ImageSpec spec(image.width, image.height, channels, hdr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (!hdr) spec.attribute("oiio:ColorSpace", "sRGB");
-  const bool ok = out->open(temporary.string(), spec) &&
-                  out->write_image(hdr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8,
-                                   hdr ? static_cast<const void*>(linear.data()) : display.data()) &&
-                  out->close();
-  if (!ok) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw std::runtime_error(path.string() + ": writing failed (" + out->geterror() + ")");
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) throw std::runtime_error(path.string() + ": could not move the finished image into place (" + ec.message() + ")");
+void writeDisplayImage(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgb) {
+  checkImagePath(path);
+  if (isHdrFormat(path))
+    throw std::runtime_error(path.string() + ": display-encoded pixels need a display format (.png, .jpg, .tif, .bmp)");
+  if (rgb.size() != size_t(width) * size_t(height) * 3)
+    throw std::invalid_argument(path.string() + ": pixel count does not match " + std::to_string(width) + " x " +
+                                std::to_string(height));
+  writePixels(path, width, height, OIIO::TypeDesc::UINT8, rgb.data());
 }
 
 }  // namespace lgh

@@ -2,6 +2,7 @@
 // Writing rendered images. HDR formats (.exr, .hdr, .pfm) get linear floats as rendered; display
 // formats (.png, .jpg, .tif, .bmp) get exposure, a tone curve and the sRGB transfer function.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -31,6 +32,10 @@ void checkImagePath(const std::filesystem::path& path);
 // half-written image where a good one was.
 void writeImage(const std::filesystem::path& path, const ImageRGBA& image, float exposureEV = 0.0f,
                 ToneMap toneMap = ToneMap::Aces);
+
+// Writes pixels that are already display-encoded (8-bit sRGB RGB, rows top-down), such as a viewer
+// screenshot of what its window shows; display formats only. Same errors and atomic rename as writeImage.
+void writeDisplayImage(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgb);
 
 // Display mapping of one linear value (exposure, tone curve, sRGB encoding) in [0, 1].
 glm::vec3 displayEncode(const glm::vec3& linear, float exposureEV, ToneMap toneMap);

@@ -104,6 +104,7 @@ class Renderer {
   GpuHierarchy hierarchy_;
   bool lightsBuilt_ = false, hierarchyBuilt_ = false;
   InputLightOptions builtLightOptions_;
+  unsigned builtLightsVersion_ = 0;  // SceneGpu::lightsVersion() that S0 was built from
   LghBuildOptions builtHierarchyOptions_;
 
   // Targets the passes hand to each other.

@@ -14,7 +14,7 @@ struct RenderSettings {
   float exposure = 0.0f;     // EV applied before tone mapping (display formats only)
   std::string toneMap = "aces";
   bool directShadows = true;
-  float clampDistance = 0.0f;  // d_c in metres; 0 = automatic (1e-3 of the scene diagonal)
+  float clampDistance = 0.0f;  // d_c in metres; 0 = automatic (1e-2 of the scene diagonal)
 
   // Input lights S0 (rebuilt only when one of these changes).
   bool indirect = true;        // light through the LGH; false: emission and direct light only
@@ -58,7 +58,7 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(s.exposure, SettingInfo{"exposure", "exposure in EV for PNG/JPEG output", -20, 20});
   visit(s.toneMap, SettingInfo{"tonemap", "tone curve for PNG/JPEG output: clamp, reinhard, aces"});
   visit(s.directShadows, SettingInfo{"direct-shadows", "trace shadow rays for direct light"});
-  visit(s.clampDistance, SettingInfo{"clamp-distance", "d_c: distances below it count as d_c in 1/d^2 (0 = 1e-3 x scene diagonal)", 0, 1e9});
+  visit(s.clampDistance, SettingInfo{"clamp-distance", "d_c: distances below it count as d_c in 1/d^2 (0 = 1e-2 x scene diagonal)", 0, 1e9});
   visit(s.indirect, SettingInfo{"indirect", "light through the LGH (VPLs, emissive surfaces, many point lights); false: direct light only"});
   visit(s.vpls, SettingInfo{"vpls", "VPL budget: ceil(vpls / bounces) light paths of up to `bounces` VPLs", 0, 16000000});
   visit(s.bounces, SettingInfo{"bounces", "diffuse bounces per light path (a VPL at each)", 1, 3});

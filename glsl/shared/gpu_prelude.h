@@ -27,10 +27,13 @@ using ivec4 = glm::ivec4;
 using mat4 = glm::mat4;
 // So that functions written once in a shared header read the same as GLSL.
 using glm::abs;
+using glm::clamp;
 using glm::cross;
 using glm::dot;
+using glm::exp2;
 using glm::max;
 using glm::min;
+using glm::pow;
 using glm::floatBitsToInt;
 using glm::intBitsToFloat;
 }  // namespace lgh::gpu

@@ -17,6 +17,10 @@ BruteForcePass::BruteForcePass()
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
   const size_t step = std::max<size_t>(1, size_t(alignment) / sizeof(gpu::GpuLight));
   maxBlockLights_ = std::max(size_t(std::max<GLint64>(maxBlock, 1 << 24)) / sizeof(gpu::GpuLight) / step * step, step);
+  // llvmpipe ends a shader invocation's loops after 65,535 iterations in total (gallivm's loop
+  // limiter, one counter for all loops of the invocation), which silently dropped every light past
+  // the 65,535th: keep each dispatch's loop iterations under it.
+  maxBlockLights_ = std::min(maxBlockLights_, kMaxLightsPerDispatch);
 }
 
 void BruteForcePass::execute(const GBuffer& gbuffer, const gl::Buffer& lights, size_t lightCount, float clampDistance,
@@ -28,8 +32,10 @@ void BruteForcePass::execute(const GBuffer& gbuffer, const gl::Buffer& lights, s
   irradiance.bindImage(0, GL_READ_WRITE);
   program.set("clampDistance", clampDistance);
   // One storage block at a time; the shader adds each chunk's sum into the image.
-  for (size_t first = 0; first < lightCount; first += maxBlockLights_) {
-    const size_t n = std::min(maxBlockLights_, lightCount - first);
+  // Shadowed, every light's BVH traversal counts against the limit too (up to ~1,000 iterations).
+  const size_t perDispatch = shadowedIn ? kMaxShadowedLightsPerDispatch : maxBlockLights_;
+  for (size_t first = 0; first < lightCount; first += perDispatch) {
+    const size_t n = std::min(perDispatch, lightCount - first);
     lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight), n * sizeof(gpu::GpuLight));
     program.set("lightCount", unsigned(n));
     program.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});

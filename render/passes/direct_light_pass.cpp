@@ -17,7 +17,7 @@ void DirectLightPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, boo
   if (skipPointLights) {
     // Thousands of point lights go through the LGH; looping over them here only to skip each one
     // would cost more than shading them (seconds on llvmpipe for 4,096).
-    if (!nonPointLightsUploaded_) {
+    if (!nonPointLightsUploaded_ || nonPointLightsVersion_ != scene.lightsVersion()) {
       std::vector<gpu::GpuPunctualLight> lights;
       for (const gpu::GpuPunctualLight& l : scene.punctualLights())
         if (l.type != gpu::kLightPoint) lights.push_back(l);
@@ -25,16 +25,28 @@ void DirectLightPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, boo
       lights.resize(std::max<size_t>(lights.size(), 1));  // a buffer is never empty
       nonPointLights_ = gl::Buffer::fromVector(lights, 0);
       nonPointLightsUploaded_ = true;
+      nonPointLightsVersion_ = scene.lightsVersion();
     }
     nonPointLights_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PUNCTUAL_LIGHTS);
     lightCount = nonPointLightCount_;
   }
   gbuffer.bindForReading();
-  out.bindImage(0, GL_WRITE_ONLY);
-  program_.set("lightCount", unsigned(lightCount));
+  out.bindImage(0, GL_READ_WRITE);
   program_.set("shadows", int(shadows));
-  program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
-  glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+  // A few lights per dispatch: llvmpipe ends an invocation's loops after 65,535 iterations in all,
+  // and every light's shadow ray walks the BVH (hundreds of iterations in Sponza).
+  constexpr size_t kLightsPerDispatch = 32;
+  size_t first = 0;
+  do {
+    const size_t n = std::min(kLightsPerDispatch, lightCount - first);
+    program_.set("firstLight", unsigned(first));
+    program_.set("lightCount", unsigned(n));
+    program_.set("accumulate", int(first > 0));
+    program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    first += n;
+  } while (first < lightCount);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   gl::checkErrors("direct light pass");
 }
 

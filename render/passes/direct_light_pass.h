@@ -18,10 +18,12 @@ class DirectLightPass {
 
  private:
   gl::Program program_;
-  // The lights shaded here when point lights are skipped (uploaded once, bound in place of the scene's).
+  // The lights shaded here when point lights are skipped (uploaded when the scene's lights change,
+  // bound in place of the scene's).
   gl::Buffer nonPointLights_;
   size_t nonPointLightCount_ = 0;
   bool nonPointLightsUploaded_ = false;
+  unsigned nonPointLightsVersion_ = 0;  // SceneGpu::lightsVersion() they were taken from
 };
 
 }  // namespace lgh

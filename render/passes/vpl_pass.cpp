@@ -11,11 +11,12 @@ namespace lgh {
 
 VplPass::VplPass(const SceneGpu& scene)
     : scene_(scene),
-      allEmitters_(buildEmitterTable(scene.scene())),
+      allEmitters_(buildEmitterTable(scene.scene(), scene.lights())),
       triangleEmitters_(buildEmissiveTriangleTable(scene.scene())),
       allEmitterBuffer_(gl::Buffer::fromVector(allEmitters_.emitters, 0)),
       triangleEmitterBuffer_(gl::Buffer::fromVector(triangleEmitters_.emitters, 0)),
       counter_(sizeof(GLuint)),
+      emittersLightsVersion_(scene.lightsVersion()),
       paths_(gl::Program::compute("vpl_generate.comp", {{"LGH_VPL_PATHS", "1"}})),
       emitterSamples_(gl::Program::compute("vpl_generate.comp", {{"LGH_EMITTER_SAMPLES", "1"}})) {}
 
@@ -42,7 +43,18 @@ size_t VplPass::run(const gl::Program& program, const gl::Buffer& emitters, gl::
   return std::min<size_t>(counter_.download<GLuint>(1)[0], capacity);
 }
 
+void VplPass::updateEmitters() {
+  if (emittersLightsVersion_ == scene_.lightsVersion()) return;
+  // A moved light keeps its power, but a changed intensity or cone changes every selection
+  // probability, so the whole table is rebuilt (on a light edit, not per frame; cheap next to tracing
+  // the paths it feeds).
+  allEmitters_ = buildEmitterTable(scene_.scene(), scene_.lights());
+  allEmitterBuffer_ = gl::Buffer::fromVector(allEmitters_.emitters, 0);
+  emittersLightsVersion_ = scene_.lightsVersion();
+}
+
 size_t VplPass::tracePaths(gl::Buffer& out, size_t offset, size_t budget, int bounces, std::uint32_t seed) {
+  updateEmitters();
   if (bounces < 1 || allEmitters_.empty()) return 0;
   return run(paths_, allEmitterBuffer_, out, offset, maxVplCount(budget, bounces), pathCount(budget, bounces), bounces,
              seed);

@@ -26,18 +26,21 @@ class VplPass {
   // `count` points on emissive triangles (chosen by power). Returns the number written.
   size_t sampleEmissiveTriangles(gl::Buffer& out, size_t offset, size_t count, std::uint32_t seed);
 
+  // The table of all emitters as of the last tracePaths (it follows SceneGpu::lightsVersion()).
   const EmitterTable& emitters() const { return allEmitters_; }
   const EmitterTable& emissiveTriangles() const { return triangleEmitters_; }
   static size_t pathCount(size_t budget, int bounces) { return (budget + size_t(bounces) - 1) / size_t(bounces); }
   static size_t maxVplCount(size_t budget, int bounces) { return pathCount(budget, bounces) * size_t(bounces); }
 
  private:
+  void updateEmitters();  // rebuilds the table of all emitters after the punctual lights changed
   size_t run(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset, size_t capacity,
              size_t samples, int bounces, std::uint32_t seed);
 
   const SceneGpu& scene_;
   EmitterTable allEmitters_, triangleEmitters_;
   gl::Buffer allEmitterBuffer_, triangleEmitterBuffer_, counter_;
+  unsigned emittersLightsVersion_;  // SceneGpu::lightsVersion() that allEmitters_ was built from
   gl::Program paths_, emitterSamples_;
 };
 

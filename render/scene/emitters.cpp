@@ -86,12 +86,12 @@ glm::dvec3 emitterPower(const PunctualLight& light, const Bounds& sceneBounds) {
   return glm::dvec3(0.0);
 }
 
-EmitterTable buildEmitterTable(const Scene& scene) {
+EmitterTable buildEmitterTable(const Scene& scene, const std::vector<PunctualLight>& lights) {
   std::vector<gpu::GpuEmitter> emitters;
   std::vector<double> weights;
   glm::dvec3 total(0.0);
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
-    const glm::dvec3 power = emitterPower(scene.lights[i], scene.bounds);
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const glm::dvec3 power = emitterPower(lights[i], scene.bounds);
     if (!(luminance(power) > 0)) continue;
     gpu::GpuEmitter e{};
     e.kind = gpu::kEmitterPunctual;

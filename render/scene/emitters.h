@@ -27,8 +27,10 @@ double spotSolidAngleFactor(float innerConeCos, float outerConeCos);
 
 glm::dvec3 emitterPower(const PunctualLight& light, const Bounds& sceneBounds);
 
-// All light sources: punctual lights first (in scene order), then emissive triangles.
-EmitterTable buildEmitterTable(const Scene& scene);
+// All light sources: punctual lights first (in scene order), then emissive triangles. `lights` stands
+// in for scene.lights when they have been changed since loading (SceneGpu::lights()).
+EmitterTable buildEmitterTable(const Scene& scene, const std::vector<PunctualLight>& lights);
+inline EmitterTable buildEmitterTable(const Scene& scene) { return buildEmitterTable(scene, scene.lights); }
 // Emissive triangles only (for sampling them as direct lights).
 EmitterTable buildEmissiveTriangleTable(const Scene& scene);
 

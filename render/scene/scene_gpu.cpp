@@ -2,6 +2,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "render/gl/debug.h"
 #include "shared/bindings.h"
@@ -85,11 +87,12 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
 
   for (const Material& m : scene.materials)
     materials_.push_back({m.baseColorFactor, m.emission, m.baseColorTexture, m.emissiveTexture, 0, 0, 0});
+  sceneLights_ = scene.lights;
   for (const PunctualLight& l : scene.lights) lights_.push_back(toGpu(l));
   bvhNodes_ = gl::Buffer::fromVector(bvh_.nodes, 0);
   bvhTriangles_ = gl::Buffer::fromVector(bvh_.triangles, 0);
   materialBuffer_ = gl::Buffer::fromVector(materials_, 0);
-  lightBuffer_ = gl::Buffer::fromVector(lights_, 0);
+  lightBuffer_ = gl::Buffer::fromVector(lights_, GL_DYNAMIC_STORAGE_BIT);  // setPunctualLight updates it
 
   std::vector<gpu::GpuSceneTriangle> triangles(scene.triangleCount());
   for (size_t t = 0; t < triangles.size(); ++t) {
@@ -118,6 +121,17 @@ void SceneGpu::bindForCompute() const {
   sceneTriangles_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_SCENE_TRIANGLES);
   textureInfos_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_TEXTURE_INFOS);
   texels_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_TEXELS);
+}
+
+void SceneGpu::setPunctualLight(size_t index, const PunctualLight& light) {
+  if (index >= sceneLights_.size())
+    throw std::out_of_range("SceneGpu::setPunctualLight: light " + std::to_string(index) + " of " +
+                            std::to_string(sceneLights_.size()));
+  sceneLights_[index] = light;
+  lights_[index] = toGpu(light);
+  lightBuffer_.update(&lights_[index], sizeof(gpu::GpuPunctualLight), index * sizeof(gpu::GpuPunctualLight));
+  ++lightsVersion_;
+  gl::checkErrors("set punctual light");
 }
 
 const gl::Texture2D& SceneGpu::texture(int index) const {

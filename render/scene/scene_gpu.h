@@ -1,7 +1,10 @@
 #pragma once
 // The scene on the GPU: vertex streams for rasterization (drawn per material, since core GL cannot
 // index samplers per triangle), material and punctual-light SSBOs, textures, and the BVH for compute
-// shaders. Built once per scene; passes only bind it.
+// shaders. Built once per scene; passes only bind it. The punctual lights alone may change afterwards
+// (the viewer moves them): setPunctualLight bumps lightsVersion(), and whatever is derived from the
+// lights (the VPL emitter table, S0 and the hierarchy, the direct pass's light list) is rebuilt by its
+// owner when it sees the version change.
 
 #include <vector>
 
@@ -37,6 +40,11 @@ class SceneGpu {
   const Scene& scene() const { return scene_; }
   const Bvh& bvh() const { return bvh_; }
   const std::vector<gpu::GpuPunctualLight>& punctualLights() const { return lights_; }
+  // The punctual lights as loaded, or as last set; the same order as punctualLights().
+  const std::vector<PunctualLight>& lights() const { return sceneLights_; }
+  // Replaces light `index` (throws std::out_of_range) and re-uploads the light buffer.
+  void setPunctualLight(size_t index, const PunctualLight& light);
+  unsigned lightsVersion() const { return lightsVersion_; }
   double bvhBuildMs() const { return bvhBuildMs_; }
 
  private:
@@ -44,7 +52,9 @@ class SceneGpu {
   Bvh bvh_;
   double bvhBuildMs_ = 0;
   std::vector<gpu::GpuMaterial> materials_;
+  std::vector<PunctualLight> sceneLights_;
   std::vector<gpu::GpuPunctualLight> lights_;
+  unsigned lightsVersion_ = 0;
   gl::Buffer positions_, normals_, texcoords_, indices_;
   gl::VertexArrayHandle vertexArray_;
   gl::Buffer bvhNodes_, bvhTriangles_, materialBuffer_, lightBuffer_;

@@ -1,0 +1,28 @@
+#pragma once
+// Shows where the hierarchy put its lights: the grid lights of one level drawn as round points at
+// their illumination centres over a displayed frame, faint where the visible surface hides them
+// (compared with the G-buffer's position at the point's pixel).
+//   in:  GpuHierarchy (grid lights and the level table), G-buffer position, the frame's camera
+//   out: points blended into a DisplayImage
+
+#include "render/camera_view.h"
+#include "render/gl/program.h"
+#include "render/passes/display_pass.h"
+#include "render/passes/lgh_build_pass.h"
+
+namespace lgh {
+
+class GridPointsPass {
+ public:
+  GridPointsPass();
+  // level in 1..hierarchy.grid.levels (other levels draw nothing). Returns the number of points drawn.
+  // `position` is the G-buffer position of the frame, the size of `out`.
+  size_t execute(const GpuHierarchy& hierarchy, int level, const CameraView& view, const gl::Texture2D& position,
+                 float pointSize, DisplayImage& out);
+
+ private:
+  gl::Program program_;
+  gl::VertexArrayHandle emptyVertexArray_;  // points come from gl_VertexID
+};
+
+}  // namespace lgh
