@@ -2,6 +2,7 @@
 //   lgh-bench build [--lights 1K,10K,100K,1M --repeats N --csv F --json F ...]   (paper Tables 1 and 2)
 //   lgh-bench light [--vpls 1K,10K,100K,1M --interleave-vpls 100K ...]           (paper Fig. 5, interleaving)
 //   lgh-bench frame [--vpls 100K --shadow-samples 4 --interleave 1,2,4 ...]        (paper Table 3)
+//   lgh-bench sweep [--preset readme|smoke --scene S@CAM --alpha ... --csv ...]      (DESIGN 7: error vs time)
 #include <CLI/CLI.hpp>
 
 #include <functional>
@@ -11,6 +12,9 @@
 #include "bench/build_bench.h"
 #include "bench/frame_bench.h"
 #include "bench/light_bench.h"
+#ifdef LGH_HAVE_REFERENCE
+#include "bench/sweep_bench.h"
+#endif
 
 namespace {
 
@@ -28,11 +32,15 @@ int run(int argc, char** argv) {
   lgh::bench::BuildBenchOptions buildOptions;
   lgh::bench::LightBenchOptions lightOptions;
   lgh::bench::FrameBenchOptions frameOptions;
-  const std::vector<Benchmark> benchmarks = {
+  std::vector<Benchmark> benchmarks = {
       {lgh::bench::addBuildCommand(app, buildOptions), [&] { return lgh::bench::runBuildBench(buildOptions); }},
       {lgh::bench::addLightCommand(app, lightOptions), [&] { return lgh::bench::runLightBench(lightOptions); }},
       {lgh::bench::addFrameCommand(app, frameOptions), [&] { return lgh::bench::runFrameBench(frameOptions); }},
   };
+#ifdef LGH_HAVE_REFERENCE  // the sweep needs the Embree reference (bench/reference.h)
+  lgh::bench::SweepOptions sweepOptions;
+  benchmarks.push_back({lgh::bench::addSweepCommand(app, sweepOptions), [&] { return lgh::bench::runSweepBench(sweepOptions); }});
+#endif
 
   try {
     app.parse(argc, argv);
