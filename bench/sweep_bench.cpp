@@ -386,8 +386,8 @@ class Sweep {
     failures_.push_back(message);
   }
   // Runs sample() (one timed measurement) until other processes stayed under kBusyLimit of the
-  // machine while it ran, at most 1 + options.retries times, 2 s apart; returns their share during
-  // the last run.
+  // machine while it ran, at most 1 + options.retries times, each retry once the machine has been
+  // quiet for a second (waiting up to 2 minutes); returns their share during the last run.
   static constexpr double kBusyLimit = 0.25;
   template <typename Fn>
   double quietly(Fn&& sample) {
@@ -395,7 +395,7 @@ class Sweep {
     for (int attempt = 0; attempt <= options_.retries; ++attempt) {
       if (attempt > 0) {
         ++retries_;
-        std::this_thread::sleep_for(std::chrono::seconds(2));
+        waitForQuiet();
       }
       const CpuClock before = cpuNow();
       sample();
@@ -404,6 +404,15 @@ class Sweep {
     }
     if (share > kBusyLimit) ++contended_;
     return share;
+  }
+  // Sleeps until other processes used under 10% of the machine for a whole second (at most 2 minutes).
+  void waitForQuiet() {
+    const auto start = Clock::now();
+    while (Clock::now() - start < std::chrono::minutes(2)) {
+      const CpuClock before = cpuNow();
+      std::this_thread::sleep_for(std::chrono::seconds(1));
+      if (othersShare(before, cpuNow()) < 0.1) return;
+    }
   }
   void tick() {
     ++done_;
@@ -1027,7 +1036,7 @@ void Sweep::writeOutputs() const {
       {"psnr", "10 log10(max r^2 / mean (a - r)^2) over the reference's pixels, luminance, dB"},
       {"compared", "irradiance before albedo: Aov::Irradiance (unshadowed) and Aov::Irradiance x Aov::Visibility (shadowed)"},
       {"others_cpu", "the largest share of the machine other processes took during a sample that was kept (a sample "
-                     "during which they took more than 25% is taken again, up to 3 times, 2 s apart)"}};
+                     "during which they took more than 25% is taken again once they are quiet, up to 3 times)"}};
   for (const Case& c : cases_) {
     json jc;
     jc["scene"] = c.scene.path.string();
@@ -1237,8 +1246,8 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
       ->capture_default_str();
   command->add_option("--threads", options.threads, "reference threads (0: all)")->capture_default_str();
   command->add_option("--retries", options.retries,
-                      "take a timed sample again (2 s later) up to this many times while other processes use more "
-                      "than 25% of the machine")
+                      "take a timed sample again, once the machine is quiet (waiting up to 2 min), up to this many "
+                      "times while other processes use more than 25% of the machine")
       ->check(CLI::Range(0, 20))
       ->capture_default_str();
   command->add_option("--backend", options.backend, "OpenGL context")->capture_default_str();
