@@ -1,0 +1,114 @@
+// Pinned frames: a few frames of the Cornell box under settings that exercise every pass, compared
+// with images stored in tests/render/pinned/. A refactoring must leave them unchanged: bit for bit
+// where the arithmetic is the same, within 1e-5 relative per pixel where sums are reordered.
+// A change that is meant to alter the image regenerates them with LGH_UPDATE_PINNED_FRAMES=1 (and
+// says why in its commit).
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "gl_test_env.h"
+#include "render/image_compare.h"
+#include "render/renderer.h"
+#include "render/scene/scene_gpu.h"
+
+namespace lgh::test {
+namespace {
+
+// A pinned image: "LGHPIN1 <width> <height>\n", then width x height RGB float32 (little endian), top-down.
+std::filesystem::path pinnedPath(const std::string& name) {
+  return sourceDir() / "tests" / "render" / "pinned" / (name + ".bin");
+}
+
+void writePinned(const std::filesystem::path& path, const ImageRGBA& image) {
+  std::ofstream out(path, std::ios::binary);
+  out << "LGHPIN1 " << image.width << ' ' << image.height << '\n';
+  for (const glm::vec4& p : image.pixels) out.write(reinterpret_cast<const char*>(&p), 3 * sizeof(float));
+  if (!out) throw std::runtime_error(path.string() + ": cannot write");
+}
+
+ImageRGBA readPinned(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string magic;
+  ImageRGBA image;
+  in >> magic >> image.width >> image.height;
+  in.get();
+  if (!in || magic != "LGHPIN1") throw std::runtime_error(path.string() + ": not a pinned image");
+  image.pixels.resize(size_t(image.width) * size_t(image.height), glm::vec4(1.0f));
+  for (glm::vec4& p : image.pixels) in.read(reinterpret_cast<char*>(&p), 3 * sizeof(float));
+  if (!in) throw std::runtime_error(path.string() + ": truncated");
+  return image;
+}
+
+class PinnedFramesTest : public GLTest {
+ protected:
+  PinnedFramesTest() : scene(loadScene(sourceDir() / "data" / "cornell_box.gltf")) {
+    settings.width = 64;
+    settings.height = 36;
+    settings.vpls = 3000;
+    settings.emitterSamples = 1024;
+  }
+
+  // Renders `frames` frames and checks the final image of each against its pinned copy.
+  void checkFrames(const std::string& name, int frames) {
+    SceneGpu gpu(scene);
+    Renderer renderer(gpu, settings);
+    const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.width, settings.height);
+    const bool update = std::getenv("LGH_UPDATE_PINNED_FRAMES") != nullptr;
+    for (int f = 0; f < frames; ++f) {
+      EXPECT_EQ(renderer.render(view).nonFinitePixels, 0u);
+      const ImageRGBA image = renderer.readImage(Aov::Final);
+      const std::filesystem::path path = pinnedPath(name + "_frame" + std::to_string(f));
+      if (update) {
+        writePinned(path, image);
+        continue;
+      }
+      ASSERT_TRUE(std::filesystem::exists(path)) << path << " is missing (LGH_UPDATE_PINNED_FRAMES=1 writes it)";
+      const ImageRGBA pinned = readPinned(path);
+      ASSERT_EQ(image.width, pinned.width);
+      ASSERT_EQ(image.height, pinned.height);
+      // Per channel: |a - b| <= 1e-5 max(|b|, a thousandth of the image's mean), so that pixels near
+      // black are not held to a relative bound their float sums cannot keep.
+      const double floor = 1e-3 * meanLuminance(pinned);
+      ASSERT_GT(floor, 0.0) << name << ": the pinned image is black";
+      double worst = 0;
+      for (size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+          const double a = image.pixels[i][c], b = pinned.pixels[i][c];
+          worst = std::max(worst, std::abs(a - b) / std::max(std::abs(b), floor));
+        }
+      EXPECT_LE(worst, 1e-5) << name << " frame " << f << ": largest relative pixel difference";
+    }
+  }
+
+  Scene scene;
+  RenderSettings settings;
+};
+
+// The defaults: S1 start, alpha 1, k = 4 shadow samples by contribution, a-trous filter; two frames
+// (the second draws new shadow samples).
+TEST_F(PinnedFramesTest, DefaultSettings) { checkFrames("default", 2); }
+
+// Interleaved 2 x 2 from S0 with alpha 2, one uniformly picked shadow sample, S1 selectable, no filter.
+TEST_F(PinnedFramesTest, InterleavedFromS0Uniform) {
+  settings.interleave = 2;
+  settings.startLevel = 0;
+  settings.alpha = 2.0f;
+  settings.shadowSamples = 1;
+  settings.shadowUniform = true;
+  settings.shadowSkipFinest = false;
+  settings.filterPasses = 0;
+  checkFrames("interleaved_s0_uniform", 1);
+}
+
+// Brute force over S0 with shadow rays to the lights themselves (no jitter), and fixed levels.
+TEST_F(PinnedFramesTest, BruteForceShadowed) {
+  settings.bruteForce = true;
+  settings.shadowSpread = 0.0f;
+  settings.levels = 3;
+  checkFrames("brute_force", 1);
+}
+
+}  // namespace
+}  // namespace lgh::test
