@@ -53,20 +53,20 @@ int runFrameBench(const FrameBenchOptions& options) {
   const auto context = gl::Context::create(contextOptions);
   const SceneGpu sceneGpu(scene);
   RenderSettings settings;
-  settings.width = options.width;
-  settings.height = options.height;
-  settings.camera = options.camera;
-  settings.vpls = options.vpls;
-  settings.bounces = options.bounces;
-  settings.shadowSamples = options.shadowSamples;
-  settings.alpha = options.alpha;
-  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.width, settings.height);
+  settings.image.width = options.width;
+  settings.image.height = options.height;
+  settings.image.camera = options.camera;
+  settings.inputLights.vpls = options.vpls;
+  settings.inputLights.bounces = options.bounces;
+  settings.shadows.samples = options.shadowSamples;
+  settings.lightPass.alpha = options.alpha;
+  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
   Renderer renderer(sceneGpu, settings);
   int exitCode = 0;
   {
     // Paths that leave the scene deposit nothing: scale the budget so the VPL count meets --vpls.
     const size_t got = renderer.render(view).lights.vpls, target = size_t(options.vpls);
-    if (got > 0 && got < target * 98 / 100) settings.vpls = int(std::min(double(target) * double(target) / double(got), 16e6));
+    if (got > 0 && got < target * 98 / 100) settings.inputLights.vpls = int(std::min(double(target) * double(target) / double(got), 16e6));
   }
 
   std::map<int, std::map<std::string, std::vector<double>>> times;  // [n][pass] -> samples
@@ -75,15 +75,15 @@ int runFrameBench(const FrameBenchOptions& options) {
   LightStats lights;
   for (int n : options.interleave) {
     RenderSettings s = settings;
-    s.interleave = n;
-    s.overdraw = true;
+    s.lightPass.interleave = n;
+    s.lightPass.overdraw = true;
     renderer.setSettings(s);
     const FrameStats counted = renderer.render(view);  // warm-up, with the fragment counter
     fragments[n] = counted.lights.rasterizedPerPixel;
     lights = counted.lights;
-    s.overdraw = false;
+    s.lightPass.overdraw = false;
     for (int r = 0; r < options.repeats; ++r) {
-      s.seed = settings.seed + 1 + r;  // new VPLs every frame, as with moving lights: every pass runs
+      s.inputLights.seed = settings.inputLights.seed + 1 + r;  // new VPLs every frame, as with moving lights: every pass runs
       renderer.setSettings(s);
       const FrameStats stats = renderer.render(view);
       if (stats.nonFinitePixels > 0) exitCode = 1;

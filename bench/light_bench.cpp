@@ -104,14 +104,14 @@ int runLightBench(const LightBenchOptions& options) {
   const auto context = gl::Context::create(contextOptions);
   const SceneGpu sceneGpu(scene);
   RenderSettings settings;
-  settings.width = options.width;
-  settings.height = options.height;
-  settings.camera = options.camera;
-  settings.bounces = options.bounces;
-  settings.alpha = options.alpha;
-  settings.startLevel = options.startLevel;
+  settings.image.width = options.width;
+  settings.image.height = options.height;
+  settings.image.camera = options.camera;
+  settings.inputLights.bounces = options.bounces;
+  settings.lightPass.alpha = options.alpha;
+  settings.lightPass.startLevel = options.startLevel;
   settings.clampDistance = options.clampDistance;
-  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.width, settings.height);
+  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
   Renderer renderer(sceneGpu, settings);
   std::printf("lgh-bench light: %s (%s), %d x %d, %s\n", path.filename().string().c_str(), why.c_str(), options.width,
               options.height, context->description().c_str());
@@ -136,31 +136,31 @@ int runLightBench(const LightBenchOptions& options) {
     SweepRow row;
     row.target = target;
     RenderSettings s = settings;
-    s.vpls = int(target);
-    s.overdraw = true;
+    s.inputLights.vpls = int(target);
+    s.lightPass.overdraw = true;
     FrameStats counted = frame(s);
     // Paths that leave the scene deposit nothing: scale the budget so the VPL count meets the target.
     const size_t got = counted.lights.vpls;
     if (got > 0 && got < target * 98 / 100) {
-      s.vpls = int(std::min<double>(double(target) * double(target) / double(got), 16e6));
+      s.inputLights.vpls = int(std::min<double>(double(target) * double(target) / double(got), 16e6));
       counted = frame(s);
     }
-    row.budget = size_t(s.vpls);
+    row.budget = size_t(s.inputLights.vpls);
     row.inputLights = counted.lights.inputLights;
     row.levels = counted.lights.levels;
     row.lightsPerLevel = counted.lights.lightsPerLevel;
     row.rasterizedPerPixel = counted.lights.rasterizedPerPixel;
     row.shadedPerPixel = counted.lights.shadedPerPixel;
     row.maxRasterized = counted.lights.maxRasterized;
-    s.overdraw = false;  // the counter's atomics would be timed too
+    s.lightPass.overdraw = false;  // the counter's atomics would be timed too
     for (int r = 0; r < options.repeats; ++r) row.lightPassMs.push_back(frame(s).passMs("light pass"));
     // The build is timed by changing the seed, which rebuilds S0 and the hierarchy.
     for (int r = 0; r < options.repeats; ++r) {
-      s.seed = settings.seed + 1 + r;
+      s.inputLights.seed = settings.inputLights.seed + 1 + r;
       row.buildMs.push_back(frame(s).passMs("LGH build"));
     }
     if (row.inputLights <= options.bruteForceLimit) {
-      s.bruteForce = true;
+      s.lightPass.bruteForce = true;
       for (int r = 0; r < std::min(options.repeats, 2); ++r) row.bruteForceMs.push_back(frame(s).passMs("light pass"));
     }
     rows.push_back(row);
@@ -206,27 +206,27 @@ int runLightBench(const LightBenchOptions& options) {
   std::vector<InterleaveRow> interleaved;
   if (options.interleaveVpls > 0) {
     RenderSettings s = settings;
-    s.vpls = int(options.interleaveVpls);
+    s.inputLights.vpls = int(options.interleaveVpls);
     for (const SweepRow& r : rows)  // the budget that met this VPL count in the sweep, if it ran there
-      if (r.target == options.interleaveVpls) s.vpls = int(r.budget);
+      if (r.target == options.interleaveVpls) s.inputLights.vpls = int(r.budget);
     std::optional<ImageRGBA> none, exact;
     for (int n : {1, 2, 4}) {
       InterleaveRow row;
       row.n = n;
-      s.interleave = n;
-      s.overdraw = true;
+      s.lightPass.interleave = n;
+      s.lightPass.overdraw = true;
       row.rasterizedPerPixel = frame(s).lights.rasterizedPerPixel;
-      s.overdraw = false;
+      s.lightPass.overdraw = false;
       for (int r = 0; r < options.repeats; ++r) row.lightPassMs.push_back(lightPassTotal(frame(s)));
       const ImageRGBA image = renderer.readImage(Aov::Irradiance);
       if (n == 1) {
         none = image;
         if (options.exactError) {
           BruteForcePass bruteForce;
-          gl::Texture2D out(settings.width, settings.height, GL_RGBA32F);
+          gl::Texture2D out(settings.image.width, settings.image.height, GL_RGBA32F);
           bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
                              renderer.clampDistance(), out);
-          exact = fromGLRows(settings.width, settings.height, out.readRGBA());
+          exact = fromGLRows(settings.image.width, settings.image.height, out.readRGBA());
         }
       }
       row.meanRatio = meanLuminance(image) / std::max(meanLuminance(*none), 1e-300);

@@ -140,7 +140,7 @@ struct Measurement {
   RenderSettings settings;
   PointSpec point;
   size_t subsetLights = 0;                              // uniform*: M
-  size_t vplTarget = 0, vpls = 0, inputLights = 0;      // the VPLs asked for and made, |S0| (budget: settings.vpls)
+  size_t vplTarget = 0, vpls = 0, inputLights = 0;      // the VPLs asked for and made, |S0| (budget: settings.inputLights.vpls)
   std::map<std::string, std::vector<double>> passMs;    // per repeat
   std::vector<double> timeMs, timeUnshadowedMs, frameMs;  // per repeat: the compared times
   double buildMs = kNaN;
@@ -296,54 +296,28 @@ std::string fileLabel(const PointSpec& p) {
   return buffer;
 }
 
-// Applies NAME=VALUE to the setting of that name (render/settings.h), checking its range.
-void applySetting(RenderSettings& settings, const std::string& assignment) {
-  const size_t eq = assignment.find('=');
-  if (eq == std::string::npos) throw std::runtime_error("--set " + assignment + ": expected NAME=VALUE");
-  const std::string name = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+// Applies NAME=VALUE (render/settings.h) unless the sweep sets that setting itself.
+void applySweepSetting(RenderSettings& settings, const std::string& assignment) {
+  const std::string name = assignment.substr(0, assignment.find('='));
   for (const char* own : {"width", "height", "camera", "vpls", "alpha", "start-level", "interleave", "shadow-samples",
                           "overdraw", "brute-force"})
-    if (name == own) throw std::runtime_error("--set " + assignment + ": the sweep sets '" + name + "' itself (use its own option)");
-  bool found = false;
-  std::string names;
-  visitSettings(settings, [&](auto& field, const SettingInfo& info) {
-    names += (names.empty() ? "" : ", ") + std::string(info.name);
-    if (name != info.name) return;
-    found = true;
-    using T = std::decay_t<decltype(field)>;
-    const std::string what = "--set " + assignment + ": ";
-    if constexpr (std::is_same_v<T, std::string>) {
-      field = value;
-    } else if constexpr (std::is_same_v<T, bool>) {
-      if (value == "true" || value == "1" || value == "on") field = true;
-      else if (value == "false" || value == "0" || value == "off") field = false;
-      else throw std::runtime_error(what + "expected true or false");
-    } else {
-      size_t used = 0;
-      double v = 0;
-      try {
-        v = std::stod(value, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != value.size() || value.empty()) throw std::runtime_error(what + "not a number");
-      if (info.min != info.max && (v < info.min || v > info.max))
-        throw std::runtime_error(what + "out of range [" + std::to_string(info.min) + ", " + std::to_string(info.max) + "]");
-      if (std::is_integral_v<T> && v != std::floor(v)) throw std::runtime_error(what + "expected an integer");
-      field = T(v);
-    }
-  });
-  if (!found) throw std::runtime_error("--set " + assignment + ": no setting '" + name + "' (settings: " + names + ")");
+    if (name == own)
+      throw std::runtime_error("--set " + assignment + ": the sweep sets '" + name + "' itself (use its own option)");
+  try {
+    applySetting(settings, assignment);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error("--set " + assignment + ": " + e.what());
+  }
 }
 
 // Renders a first frame, raising the VPL budget until the VPLs made meet the target within 2% (light
 // paths that leave the scene deposit nothing), as lgh-bench light does. Leaves the budget in `s`.
 FrameStats renderToTarget(Renderer& renderer, RenderSettings& s, const CameraView& view, size_t target) {
-  s.vpls = int(target);
+  s.inputLights.vpls = int(target);
   renderer.setSettings(s);
   FrameStats stats = renderer.render(view);
   for (int attempt = 0; attempt < 4 && stats.lights.vpls > 0 && stats.lights.vpls * 100 < target * 98; ++attempt) {
-    s.vpls = int(std::min(double(s.vpls) * double(target) / double(stats.lights.vpls) * 1.005, 16e6));
+    s.inputLights.vpls = int(std::min(double(s.inputLights.vpls) * double(target) / double(stats.lights.vpls) * 1.005, 16e6));
     renderer.setSettings(s);
     stats = renderer.render(view);
   }
@@ -440,7 +414,7 @@ std::vector<double> Sweep::measureBuild(const Renderer& renderer, const Scene& s
   // The hierarchy over the renderer's S0, built again with the renderer's options (Renderer::buildOptions):
   // in a frame whose lights move, this is paid every frame.
   LghBuildOptions o;
-  o.levels = renderer.settings().levels;
+  o.levels = renderer.settings().hierarchy.levels;
   o.eMin = 1e-4 * std::max(double(scene.bounds.diagonal()), 1e-6);
   std::vector<double> samples;
   GpuHierarchy hierarchy;
@@ -459,18 +433,18 @@ Measurement Sweep::measureLgh(Renderer& renderer, const CameraView& view, const 
   m.method = "lgh";
   m.point = point;
   RenderSettings s = base;
-  s.alpha = point.alpha;
-  s.startLevel = point.startLevel;
-  s.interleave = point.interleave;
-  s.shadowSamples = point.k;
-  s.filterPasses = point.filter ? base.filterPasses : 0;
+  s.lightPass.alpha = point.alpha;
+  s.lightPass.startLevel = point.startLevel;
+  s.lightPass.interleave = point.interleave;
+  s.shadows.samples = point.k;
+  s.filter.passes = point.filter ? base.filter.passes : 0;
   m.settings = s;
   m.buildMs = buildMs;
   // Untimed: the fragment counter (its atomics would be timed too); also the warm-up.
-  s.overdraw = true;
+  s.lightPass.overdraw = true;
   renderer.setSettings(s);
   m.lights = renderer.render(view).lights;
-  s.overdraw = false;
+  s.lightPass.overdraw = false;
   renderer.setSettings(s);
   for (int r = 0; r < options_.repeats; ++r) {
     FrameStats stats;
@@ -511,8 +485,8 @@ reference::ReferenceImage Sweep::obtainReference(const reference::OcclusionScene
                                                  const Renderer& renderer, const std::vector<Light>& lights, Case& c) {
   const RenderSettings& s = renderer.settings();
   reference::ReferenceInput input;
-  input.width = s.width;
-  input.height = s.height;
+  input.width = s.image.width;
+  input.height = s.image.height;
   input.position = renderer.readImage(Aov::Position).pixels;
   input.normal = renderer.readImage(Aov::Normal).pixels;
   input.lights = lights;
@@ -529,9 +503,9 @@ reference::ReferenceImage Sweep::obtainReference(const reference::OcclusionScene
   const auto mtime = fs::last_write_time(spec.path, error).time_since_epoch().count();
   std::ostringstream key;
   key << "lgh reference v1\nscene " << spec.path.string() << " mtime " << mtime << " bytes "
-      << fs::file_size(spec.path, error) << "\ncamera '" << s.camera << "' " << s.width << "x" << s.height
-      << "\nlights vpls " << s.vpls << " bounces " << s.bounces << " emitter-samples " << s.emitterSamples
-      << " max-direct-lights " << s.maxDirectLights << " seed " << s.seed << " count " << lights.size() << " hash "
+      << fs::file_size(spec.path, error) << "\ncamera '" << s.image.camera << "' " << s.image.width << "x" << s.image.height
+      << "\nlights vpls " << s.inputLights.vpls << " bounces " << s.inputLights.bounces << " emitter-samples " << s.inputLights.emitterSamples
+      << " max-direct-lights " << s.inputLights.maxDirectLights << " seed " << s.inputLights.seed << " count " << lights.size() << " hash "
       << reference::hex64(reference::hashLights(lights)) << "\ngbuffer "
       << reference::hex64(reference::hashBytes(input.normal.data(), input.normal.size() * sizeof(glm::vec4),
                                                reference::hashBytes(input.position.data(),
@@ -539,7 +513,7 @@ reference::ReferenceImage Sweep::obtainReference(const reference::OcclusionScene
       << "\nclamp " << std::hexfloat << input.clampDistance << std::defaultfloat << "\npixels fraction " << fraction
       << " seed 1\nshadowed 1\n";
   c.reference.fraction = fraction;
-  c.reference.imagePixels = size_t(s.width) * size_t(s.height);
+  c.reference.imagePixels = size_t(s.image.width) * size_t(s.image.height);
   std::optional<reference::ReferenceImage> ref;
   if (!cacheDir_.empty()) {
     ref = reference::loadReference(cacheDir_, key.str());
@@ -568,14 +542,14 @@ void Sweep::runCase(const Scene& scene, const SceneGpu& gpu, const reference::Oc
   c.scene = spec;
   c.vplTarget = vplTarget;
   RenderSettings base;
-  base.width = options_.width;
-  base.height = options_.height;
-  base.camera = spec.camera;
-  for (const std::string& a : options_.set) applySetting(base, a);
-  const CameraView view = makeCameraView(resolveCamera(scene, base), base.width, base.height);
+  base.image.width = options_.width;
+  base.image.height = options_.height;
+  base.image.camera = spec.camera;
+  for (const std::string& a : options_.set) applySweepSetting(base, a);
+  const CameraView view = makeCameraView(resolveCamera(scene, base), base.image.width, base.image.height);
   Renderer renderer(gpu, base);
   const FrameStats first = renderToTarget(renderer, base, view, vplTarget);
-  c.vplBudget = size_t(base.vpls);
+  c.vplBudget = size_t(base.inputLights.vpls);
   c.base = base;
   c.inputLights = first.lights.inputLights;
   c.vpls = first.lights.vpls;
@@ -606,8 +580,8 @@ void Sweep::runCase(const Scene& scene, const SceneGpu& gpu, const reference::Oc
   for (const PointSpec& p : points_) variants.insert({p.startLevel, p.k > 0});
   for (const auto& [start, shadows] : variants) {
     RenderSettings s = base;
-    s.startLevel = start;
-    s.shadowSamples = shadows ? 4 : 0;
+    s.lightPass.startLevel = start;
+    s.shadows.samples = shadows ? 4 : 0;
     renderer.setSettings(s);
     renderer.render(view);
   }
@@ -622,13 +596,13 @@ void Sweep::runCase(const Scene& scene, const SceneGpu& gpu, const reference::Oc
 
   // --- Baselines on the same G-buffer and S0.
   const float clamp = renderer.clampDistance();
-  const int w = base.width, h = base.height;
+  const int w = base.image.width, h = base.image.height;
   gl::Texture2D target(w, h, GL_RGBA32F);
   auto readTarget = [&] { return fromGLRows(w, h, target.readRGBA()); };
   const size_t n = gpuLights.size();
   auto rasterizedBruteForce = [&](const gl::Buffer& buffer, size_t count) {
     LightPassOptions o;
-    o.bruteForce = true;
+    o.pass.bruteForce = true;
     o.clampDistance = clamp;
     LightPassTarget t{renderer.gbuffer().position, renderer.gbuffer().normal, TileLayout::of(1, w, h), target, nullptr, nullptr};
     lightPass_->execute(buffer, count, renderer.hierarchy(), o, t);
@@ -700,8 +674,8 @@ void Sweep::runCase(const Scene& scene, const SceneGpu& gpu, const reference::Oc
   brute.method = "brute_force";
   brute.series = "baseline";
   brute.settings = base;
-  brute.settings.bruteForce = true;
-  brute.settings.shadowSamples = 0;
+  brute.settings.lightPass.bruteForce = true;
+  brute.settings.shadows.samples = 0;
   brute.subsetLights = n;
   if (n <= options_.bruteForceLimit) {
     renderer.setSettings(brute.settings);
@@ -727,9 +701,9 @@ void Sweep::runCase(const Scene& scene, const SceneGpu& gpu, const reference::Oc
   bruteRatio.method = "brute_force_ratio";
   bruteRatio.series = "baseline";
   bruteRatio.settings = base;
-  bruteRatio.settings.bruteForce = true;
+  bruteRatio.settings.lightPass.bruteForce = true;
   bruteRatio.subsetLights = n;
-  if (n <= options_.bruteForceLimit && base.shadowSamples > 0) {
+  if (n <= options_.bruteForceLimit && base.shadows.samples > 0) {
     renderer.setSettings(bruteRatio.settings);
     renderer.render(view);  // warm-up (the selection's variant)
     for (int r = 0; r < std::min(options_.repeats, 2); ++r) {
@@ -751,7 +725,7 @@ void Sweep::runCase(const Scene& scene, const SceneGpu& gpu, const reference::Oc
   // same light paths, unbiased like a subset of S0) with the frame's shadow estimate (k
   // importance-picked rays per pixel, the filter). Last: it replaces the renderer's S0.
   std::vector<Measurement> uniformRatioRuns;
-  if (base.shadowSamples > 0) {
+  if (base.shadows.samples > 0) {
     bool warm = false;
     for (size_t m : options_.uniformLights) {
       if (m >= n) continue;
@@ -759,14 +733,14 @@ void Sweep::runCase(const Scene& scene, const SceneGpu& gpu, const reference::Oc
       u.method = "uniform_ratio";
       u.series = "baseline";
       RenderSettings s = base;
-      s.bruteForce = true;
+      s.lightPass.bruteForce = true;
       const double f = double(m) / double(n);
-      s.vpls = std::max(1, int(std::lround(double(base.vpls) * f)));
-      s.emitterSamples = int(std::lround(double(base.emitterSamples) * f));
+      s.inputLights.vpls = std::max(1, int(std::lround(double(base.inputLights.vpls) * f)));
+      s.inputLights.emitterSamples = int(std::lround(double(base.inputLights.emitterSamples) * f));
       u.settings = s;
       std::vector<double> made;
       for (int r = warm ? 0 : -1; r < options_.repeats; ++r) {
-        s.seed = base.seed + 101 + r;
+        s.inputLights.seed = base.inputLights.seed + 101 + r;
         renderer.setSettings(s);
         if (r < 0) {  // the series' first set also compiles its shader variant
           renderer.render(view);
@@ -828,12 +802,12 @@ void Sweep::runScaling(const Scene& scene, const SceneGpu& gpu, const SceneSpec&
   c.scene = spec;
   c.scaling = true;
   RenderSettings base;
-  base.width = options_.width;
-  base.height = options_.height;
-  base.camera = spec.camera;
-  for (const std::string& a : options_.set) applySetting(base, a);
+  base.image.width = options_.width;
+  base.image.height = options_.height;
+  base.image.camera = spec.camera;
+  for (const std::string& a : options_.set) applySweepSetting(base, a);
   c.base = base;
-  const CameraView view = makeCameraView(resolveCamera(scene, base), base.width, base.height);
+  const CameraView view = makeCameraView(resolveCamera(scene, base), base.image.width, base.image.height);
   double bruteMsPerLight = kNaN;
   for (size_t target : options_.scalingVpls) {
     Renderer renderer(gpu, base);
@@ -855,8 +829,8 @@ void Sweep::runScaling(const Scene& scene, const SceneGpu& gpu, const SceneSpec&
     brute.method = "brute_force";
     brute.series = "scaling";
     brute.settings = base;
-    brute.settings.bruteForce = true;
-    brute.settings.shadowSamples = 0;
+    brute.settings.lightPass.bruteForce = true;
+    brute.settings.shadows.samples = 0;
     brute.subsetLights = first.lights.inputLights;
     tag(brute);
     if (first.lights.inputLights <= options_.bruteForceLimit) {
@@ -980,7 +954,7 @@ void Sweep::writeOutputs() const {
       const bool lgh = m.method == "lgh";
       const Spread t = spreadOf(m.timeMs), rs = spreadOf(m.rmseShadowed);
       csv << c.scene.name << "," << c.scene.camera << "," << options_.width << "," << options_.height << ","
-          << m.vplTarget << "," << m.settings.vpls << "," << m.vpls << "," << m.inputLights << "," << m.method << ","
+          << m.vplTarget << "," << m.settings.inputLights.vpls << "," << m.vpls << "," << m.inputLights << "," << m.method << ","
           << m.series << "," << (lgh ? num(m.point.alpha) : "") << "," << (lgh ? std::to_string(m.point.startLevel) : "")
           << "," << (lgh ? std::to_string(m.point.interleave) : "") << "," << (lgh ? std::to_string(m.point.k) : "") << ","
           << (lgh && m.point.k > 0 ? (m.point.filter ? "on" : "off") : "") << "," << (lgh ? "" : std::to_string(m.subsetLights)) << ","
@@ -1117,13 +1091,13 @@ int Sweep::run() {
   if (specs.empty()) throw std::runtime_error("no scene: give --scene PATH[@CAMERA] or a --preset");
   {
     RenderSettings s;
-    for (const std::string& a : options_.set) applySetting(s, a);
+    for (const std::string& a : options_.set) applySweepSetting(s, a);
   }
   std::vector<Scene> scenes;
   for (const SceneSpec& spec : specs) {
     scenes.push_back(loadScene(spec.path));
     RenderSettings s;
-    s.camera = spec.camera;
+    s.image.camera = spec.camera;
     resolveCamera(scenes.back(), s);  // throws, naming the cameras there are, for a wrong name
   }
   outDir_ = options_.outDir;

@@ -58,9 +58,9 @@ double FrameStats::passMs(const std::string& name) const {
 }
 
 Camera resolveCamera(const Scene& scene, const RenderSettings& settings) {
-  if (!settings.camera.empty()) return scene.camera(settings.camera);
+  if (!settings.image.camera.empty()) return scene.camera(settings.image.camera);
   if (!scene.cameras.empty()) return scene.cameras.front();
-  return frameBounds(scene.bounds, float(settings.width) / float(settings.height));
+  return frameBounds(scene.bounds, float(settings.image.width) / float(settings.image.height));
 }
 
 Renderer::Renderer(const SceneGpu& scene, const RenderSettings& settings)
@@ -74,17 +74,18 @@ Renderer::Renderer(const SceneGpu& scene, const RenderSettings& settings)
 }
 
 void Renderer::setSettings(const RenderSettings& settings) {
-  const bool resized = settings.width != settings_.width || settings.height != settings_.height ||
-                       settings.interleave != settings_.interleave;
+  const bool resized = settings.image.width != settings_.image.width ||
+                       settings.image.height != settings_.image.height ||
+                       settings.lightPass.interleave != settings_.lightPass.interleave;
   settings_ = settings;
   if (resized) allocateTargets();
 }
 
 void Renderer::allocateTargets() {
-  const int w = settings_.width, h = settings_.height;
+  const int w = settings_.image.width, h = settings_.image.height;
   gbuffer_ = GBuffer(w, h);
   direct_ = gl::Texture2D(w, h, GL_RGBA32F);
-  tiles_ = settings_.interleave > 1 ? Tiles(TileLayout::of(settings_.interleave, w, h)) : Tiles();
+  tiles_ = interleaved() ? Tiles(TileLayout::of(settings_.lightPass.interleave, w, h)) : Tiles();
   irradiance_ = gl::Texture2D(w, h, GL_RGBA32F);
   fragmentCounts_ = gl::Texture2D(w, h, GL_R32UI);
   fragmentCounts_.clearUint(0);
@@ -98,38 +99,48 @@ void Renderer::allocateTargets() {
 }
 
 float Renderer::clampDistance() const {
-  return settings_.clampDistance > 0 ? settings_.clampDistance : kDefaultClampFraction * std::max(scene_.scene().bounds.diagonal(), 1e-6f);
+  return settings_.clampDistance > 0 ? settings_.clampDistance
+                                     : kDefaultClampFraction * std::max(scene_.scene().bounds.diagonal(), 1e-6f);
 }
 
 bool Renderer::pointLightsThroughLgh() const {
-  return settings_.indirect && scene_.punctualLights().size() > size_t(settings_.maxDirectLights);
-}
-
-InputLightOptions Renderer::inputLightOptions() const {
-  InputLightOptions o;
-  o.pointLights = pointLightsThroughLgh();
-  o.emitterSamples = size_t(settings_.emitterSamples);
-  o.vplBudget = size_t(settings_.vpls);
-  o.bounces = settings_.bounces;
-  o.seed = std::uint32_t(settings_.seed);
-  return o;
+  return settings_.indirect && scene_.punctualLights().size() > size_t(settings_.inputLights.maxDirectLights);
 }
 
 LghBuildOptions Renderer::buildOptions() const {
   LghBuildOptions o;
-  o.levels = settings_.levels;
+  o.levels = settings_.hierarchy.levels;
   // The smallest top cell: 1e-4 of the scene (one light, or lights that coincide).
   o.eMin = 1e-4 * std::max(double(scene_.scene().bounds.diagonal()), 1e-6);
   return o;
 }
 
+LightPassOptions Renderer::lightPassOptions() const {
+  LightPassOptions o;
+  o.pass = settings_.lightPass;
+  o.shadows = settings_.shadows;
+  o.clampDistance = clampDistance();
+  o.frameSeed = frameIndex_ * 0x9e3779b9u + unsigned(settings_.inputLights.seed);
+  return o;
+}
+
+LightPassTarget Renderer::lightPassTarget() {
+  const TileLayout layout =
+      interleaved() ? tiles_.layout : TileLayout::of(1, settings_.image.width, settings_.image.height);
+  if (shadowed()) shadowSlots_.allocate(layout.targetSize(), settings_.shadows.samples);
+  if (interleaved())
+    return {tiles_.position, tiles_.normal, layout, tiles_.irradiance, &tiles_.fragmentCounts, &shadowSlots_};
+  return {gbuffer_.position, gbuffer_.normal, layout, irradiance_, &fragmentCounts_, &shadowSlots_};
+}
+
 void Renderer::uploadFrameUniforms(const CameraView& view) {
+  const ImageSettings& image = settings_.image;
   gpu::FrameUniforms u{};
   u.viewProjection = view.viewProjection();
   u.inverseViewProjection = glm::inverse(u.viewProjection);
   u.cameraPosition = glm::vec4(view.position, 1.0f);
-  u.resolution = glm::uvec4(unsigned(settings_.width), unsigned(settings_.height), frameIndex_, 0u);
-  const float footprint = 2.0f / (float(settings_.height) * std::max(std::abs(view.projection[1][1]), 1e-30f));
+  u.resolution = glm::uvec4(unsigned(image.width), unsigned(image.height), frameIndex_, 0u);
+  const float footprint = 2.0f / (float(image.height) * std::max(std::abs(view.projection[1][1]), 1e-30f));
   u.sceneScale = glm::vec4(scene_.scene().bounds.diagonal(), clampDistance(), footprint, 0.0f);
   frameUniforms_.update(&u, sizeof(u));
   frameUniforms_.bindBase(GL_UNIFORM_BUFFER, LGH_UBO_FRAME);
@@ -138,101 +149,63 @@ void Renderer::uploadFrameUniforms(const CameraView& view) {
 FrameStats Renderer::render(const CameraView& view) {
   FrameStats stats;
   uploadFrameUniforms(view);
-  {
-    gl::Profiler::Scope pass(profiler_, "G-buffer");
-    gbufferPass_.execute(scene_, gbuffer_);
-  }
-  {
-    gl::Profiler::Scope pass(profiler_, "direct light");
+  // Surfaces seen by the camera: position, normal, albedo, emission.
+  timed(passes::kGBuffer, [&] { gbufferPass_.execute(scene_, gbuffer_); });
+  // Punctual lights, one shadow ray each (except point lights that go through the LGH).
+  timed(passes::kDirectLight, [&] {
     directPass_.execute(scene_, gbuffer_, settings_.directShadows, pointLightsThroughLgh(), direct_);
+  });
+  if (settings_.indirect) {
+    // S0 (VPLs, emitter samples, many point lights) and its hierarchy, when out of date.
+    stats.lightsRebuilt = updateLights();
+    const LightPassOptions options = lightPassOptions();
+    LightPassTarget target = lightPassTarget();
+    LightPassDraws draws;
+    // n x n interleaving: the surfaces as n^2 tiles, each shaded by 1/n^2 of the lights.
+    if (interleaved()) timed(passes::kInterleaveSplit, [&] { interleavePass_.split(gbuffer_, tiles_); });
+    // Light volumes: irradiance through the LGH, and k lights per pixel picked for shadow rays.
+    timed(passes::kLightPass, [&] { draws = lightPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, options, target); });
+    // The tiles' irradiance back at full resolution, edge-aware.
+    if (interleaved()) timed(passes::kInterleaveResolve, [&] { interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, options.pass.overdraw, irradiance_, fragmentCounts_); });
+    // Shadow rays to the picked lights: the raw visibility ratio.
+    if (shadowed()) timed(passes::kShadowRays, [&] { shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, target.layout, inputLights_.lights, hierarchy_, options, rawRatio_); });
+    // A-trous filter over the ratio, as a ratio estimator with the unshadowed irradiance.
+    if (shadowed()) timed(passes::kShadowFilter, [&] { shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, visibility_); });
+    stats.lights = lightStats(draws);
   }
-  const bool indirect = settings_.indirect;
-  if (indirect) {
-    // S0 and the hierarchy depend on the lights and the settings, not on the camera. A light moved
-    // through SceneGpu::setPunctualLight rebuilds both, as in the paper (VPLs are not reprojected).
-    const InputLightOptions lightOptions = inputLightOptions();
-    const LghBuildOptions hierarchyOptions = buildOptions();
-    const bool relight =
-        !lightsBuilt_ || lightOptions != builtLightOptions_ || scene_.lightsVersion() != builtLightsVersion_;
-    if (relight) {
-      gl::Profiler::Scope pass(profiler_, "input lights");
-      inputLightsPass_.execute(lightOptions, inputLights_);
-      hierarchyBuilt_ = false;
-    }
-    // Brute force needs no hierarchy; it is built when the light pass first needs it.
-    const bool rebuild = !settings_.bruteForce && (!hierarchyBuilt_ || hierarchyOptions.levels != builtHierarchyOptions_.levels);
-    if (rebuild) {
-      gl::Profiler::Scope pass(profiler_, "LGH build");
-      buildPass_.execute(inputLights_.lights, inputLights_.count, hierarchyOptions, hierarchy_);
-      hierarchyBuilt_ = true;
-    }
-    stats.lightsRebuilt = relight || rebuild;
-    lightsBuilt_ = true;
-    builtLightOptions_ = lightOptions;
-    builtLightsVersion_ = scene_.lightsVersion();
-    builtHierarchyOptions_ = hierarchyOptions;
-
-    LightPassOptions options;
-    options.alpha = settings_.alpha;
-    options.firstLevel = settings_.startLevel;
-    options.clampDistance = clampDistance();
-    options.bruteForce = settings_.bruteForce;
-    options.countFragments = settings_.overdraw;
-    options.shadowSamples = settings_.shadowSamples;
-    options.skipFinestForShadows = settings_.shadowSkipFinest;
-    options.uniformSelection = settings_.shadowUniform;
-    options.frameSeed = frameIndex_ * 0x9e3779b9u + unsigned(settings_.seed);
-    const bool interleaved = settings_.interleave > 1;
-    const TileLayout layout = interleaved ? tiles_.layout : TileLayout::of(1, settings_.width, settings_.height);
-    if (options.shadowSamples > 0) shadowSlots_.allocate(layout.targetSize(), options.shadowSamples);
-    if (interleaved) {
-      gl::Profiler::Scope pass(profiler_, "interleave split");
-      interleavePass_.split(gbuffer_, tiles_);
-    }
-    {
-      gl::Profiler::Scope pass(profiler_, "light pass");
-      LightPassTarget target =
-          interleaved ? LightPassTarget{tiles_.position, tiles_.normal, layout, tiles_.irradiance, &tiles_.fragmentCounts, &shadowSlots_}
-                      : LightPassTarget{gbuffer_.position, gbuffer_.normal, layout, irradiance_, &fragmentCounts_, &shadowSlots_};
-      stats.lights.lightsPerLevel = lightPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, options, target).lightsPerLevel;
-    }
-    if (interleaved) {
-      gl::Profiler::Scope pass(profiler_, "interleave resolve");
-      interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, settings_.overdraw, irradiance_, fragmentCounts_);
-    }
-    if (options.shadowSamples > 0) {
-      {
-        gl::Profiler::Scope pass(profiler_, "shadow rays");
-        ShadowRayOptions rays;
-        rays.spread = settings_.shadowSpread;
-        rays.frameSeed = options.frameSeed;
-        shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, layout, inputLights_.lights, hierarchy_, options, rays,
-                               rawRatio_);
-      }
-      gl::Profiler::Scope pass(profiler_, "shadow filter");
-      ShadowFilterOptions filter;
-      filter.passes = settings_.filterPasses;
-      filter.normalPower = settings_.filterNormalPower;
-      filter.planeSigma = settings_.filterPlaneSigma;
-      filter.ratioSigma = settings_.filterRatioSigma;
-      shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, filter, visibility_);
-    }
-    stats.lights.inputLights = inputLights_.count;
-    stats.lights.pointLights = inputLights_.pointLights;
-    stats.lights.emitterSamples = inputLights_.emitterSamples;
-    stats.lights.vpls = inputLights_.vpls;
-    stats.lights.levels = settings_.bruteForce ? 0 : hierarchy_.grid.levels;
-  }
-  {
-    gl::Profiler::Scope pass(profiler_, "composite");
-    stats.nonFinitePixels =
-        compositePass_.execute(gbuffer_, direct_, indirect ? &irradiance_ : nullptr,
-                               indirect && settings_.shadowSamples > 0 ? &visibility_ : nullptr, indirect_, final_);
-  }
+  // Emission + direct + albedo / pi x irradiance x visibility; non-finite pixels written black, counted.
+  timed(passes::kComposite, [&] { stats.nonFinitePixels = compositePass_.execute(gbuffer_, direct_, settings_.indirect ? &irradiance_ : nullptr, settings_.indirect && shadowed() ? &visibility_ : nullptr, indirect_, final_); });
   stats.passes = profiler_.collect();
-  if (indirect && settings_.overdraw) measureOverdraw(stats.lights);
+  if (settings_.indirect && settings_.lightPass.overdraw) measureOverdraw(stats.lights);
   ++frameIndex_;
   gl::checkErrors("frame");
+  return stats;
+}
+
+bool Renderer::updateLights() {
+  const InputLightKey key{settings_.inputLights, pointLightsThroughLgh(), scene_.lightsVersion()};
+  const LghBuildOptions hierarchyOptions = buildOptions();
+  const LightBuilds::Plan plan = builds_.plan(key, hierarchyOptions.levels, !settings_.lightPass.bruteForce);
+  // A light moved through SceneGpu::setPunctualLight rebuilds both, as in the paper (VPLs are not reprojected).
+  if (plan.inputLights) {
+    timed(passes::kInputLights, [&] { inputLightsPass_.execute(key.settings, key.pointLightsToS0, inputLights_); });
+    builds_.builtInputLights(key);
+  }
+  if (plan.hierarchy) {
+    timed(passes::kLghBuild, [&] { buildPass_.execute(inputLights_.lights, inputLights_.count, hierarchyOptions, hierarchy_); });
+    builds_.builtHierarchy(hierarchyOptions.levels);
+  }
+  return plan.inputLights || plan.hierarchy;
+}
+
+LightStats Renderer::lightStats(const LightPassDraws& draws) const {
+  LightStats stats;
+  stats.lightsPerLevel = draws.lightsPerLevel;
+  stats.inputLights = inputLights_.count;
+  stats.pointLights = inputLights_.pointLights;
+  stats.emitterSamples = inputLights_.emitterSamples;
+  stats.vpls = inputLights_.vpls;
+  stats.levels = settings_.lightPass.bruteForce ? 0 : hierarchy_.grid.levels;
   return stats;
 }
 

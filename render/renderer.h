@@ -18,9 +18,24 @@
 #include "render/passes/lgh_build_pass.h"
 #include "render/passes/shadow_pass.h"
 #include "render/passes/light_volume_pass.h"
+#include "render/light_builds.h"
 #include "render/settings.h"
 
 namespace lgh {
+
+// The passes' names in FrameStats::passes, in frame order (benchmarks and the viewer look them up).
+namespace passes {
+inline constexpr const char* kGBuffer = "G-buffer";
+inline constexpr const char* kDirectLight = "direct light";
+inline constexpr const char* kInputLights = "input lights";
+inline constexpr const char* kLghBuild = "LGH build";
+inline constexpr const char* kInterleaveSplit = "interleave split";
+inline constexpr const char* kLightPass = "light pass";
+inline constexpr const char* kInterleaveResolve = "interleave resolve";
+inline constexpr const char* kShadowRays = "shadow rays";
+inline constexpr const char* kShadowFilter = "shadow filter";
+inline constexpr const char* kComposite = "composite";
+}  // namespace passes
 
 // Images a frame can hand back (AOVs).
 //   indirect    radiance through the LGH, unshadowed (albedo / pi x irradiance)
@@ -77,10 +92,24 @@ class Renderer {
  private:
   void allocateTargets();
   void uploadFrameUniforms(const CameraView& view);
-  InputLightOptions inputLightOptions() const;
   bool pointLightsThroughLgh() const;
+  bool shadowed() const { return settings_.shadows.samples > 0; }
+  bool interleaved() const { return settings_.lightPass.interleave > 1; }
   LghBuildOptions buildOptions() const;
+  LightPassOptions lightPassOptions() const;
+  LightPassTarget lightPassTarget();
+  // The frame's steps that are more than one call: S0 and the hierarchy when they are out of date,
+  // then the light pass with its optional interleaving.
+  bool updateLights();
+  LightPassDraws shadeIndirect(const LightPassOptions& options);
+  LightStats lightStats(const LightPassDraws& draws) const;
   void measureOverdraw(LightStats& stats) const;
+  // Runs `pass` inside a profiler scope called `name` (a passes:: constant).
+  template <typename Pass>
+  void timed(const char* name, Pass&& pass) {
+    gl::Profiler::Scope scope(profiler_, name);
+    pass();
+  }
 
   const SceneGpu& scene_;
   RenderSettings settings_;
@@ -99,13 +128,10 @@ class Renderer {
   ShadowFilterPass shadowFilterPass_;
   CompositePass compositePass_;
 
-  // Built when the lights or the hierarchy's settings change, not every frame.
+  // Built when the lights or their settings change, not every frame (LightBuilds decides).
+  LightBuilds builds_;
   InputLights inputLights_;
   GpuHierarchy hierarchy_;
-  bool lightsBuilt_ = false, hierarchyBuilt_ = false;
-  InputLightOptions builtLightOptions_;
-  unsigned builtLightsVersion_ = 0;  // SceneGpu::lightsVersion() that S0 was built from
-  LghBuildOptions builtHierarchyOptions_;
 
   // Targets the passes hand to each other.
   GBuffer gbuffer_;

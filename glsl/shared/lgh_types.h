@@ -8,6 +8,10 @@ GPU_NAMESPACE_BEGIN
 
 GPU_CONST uint kLightOriented = 1u;  // GpuLight::flags: a cosine emitter with normal `normalOct`
 
+// The GPU build keys grid vertices by 32-bit linear indices: (2^(L-1)+1)^3 < 2^32 allows L <= 11
+// (an S1 cell of H/1024).
+GPU_CONST uint kMaxBuildLevels = 11u;
+
 // An input light (S0): a VPL, an emitter sample or a glTF point light. 32 bytes, so 4M lights fit one
 // 128 MiB shader storage block.
 GPU_STRUCT(GpuLight) {

@@ -55,7 +55,7 @@ int run(int argc, char** argv) {
     if (eq == std::string::npos) throw std::invalid_argument("--aov expects NAME=FILE, got '" + spec + "'");
     aovs[lgh::parseAov(spec.substr(0, eq))] = spec.substr(eq + 1);
   }
-  const lgh::ToneMap toneMap = lgh::parseToneMap(settings.toneMap);
+  const lgh::ToneMap toneMap = lgh::parseToneMap(settings.image.toneMap);
   lgh::checkImagePath(output);
   for (const auto& [aov, path] : aovs) lgh::checkImagePath(path);
 
@@ -74,20 +74,20 @@ int run(int argc, char** argv) {
   const lgh::SceneGpu sceneGpu(scene);
   lgh::Renderer renderer(sceneGpu, settings);
   const double setupMs = msSince(t1);
-  const lgh::FrameStats stats = renderer.render(lgh::makeCameraView(camera, settings.width, settings.height));
+  const lgh::FrameStats stats = renderer.render(lgh::makeCameraView(camera, settings.image.width, settings.image.height));
 
-  lgh::writeImage(output, renderer.readImage(lgh::Aov::Final), settings.exposure, toneMap);
+  lgh::writeImage(output, renderer.readImage(lgh::Aov::Final), settings.image.exposure, toneMap);
   for (const auto& [aov, path] : aovs) {
     if (lgh::isDataAov(aov))
       lgh::writeImage(path, renderer.readImage(aov), 0.0f, lgh::ToneMap::Clamp);
     else
-      lgh::writeImage(path, renderer.readImage(aov), settings.exposure, toneMap);
+      lgh::writeImage(path, renderer.readImage(aov), settings.image.exposure, toneMap);
   }
 
   if (!quiet) {
     std::printf("scene      %s\n", scenePath.string().c_str());
     std::printf("context    %s\n", context->description().c_str());
-    std::printf("image      %d x %d -> %s\n", settings.width, settings.height, output.string().c_str());
+    std::printf("image      %d x %d -> %s\n", settings.image.width, settings.image.height, output.string().c_str());
     std::printf("camera     %s\n", camera.name.empty() ? "(framing the scene bounds)" : camera.name.c_str());
     std::printf("triangles  %zu (BVH: %zu nodes, depth %d, built in %.1f ms)\n", scene.triangleCount(),
                 sceneGpu.bvh().stats.nodeCount, sceneGpu.bvh().stats.maxDepth, sceneGpu.bvhBuildMs());
@@ -97,20 +97,20 @@ int run(int argc, char** argv) {
     const lgh::LightStats& ls = stats.lights;
     if (settings.indirect) {
       std::printf("S0         %zu input lights: %zu point lights, %zu emitter samples, %zu VPLs (%d bounces)\n",
-                  ls.inputLights, ls.pointLights, ls.emitterSamples, ls.vpls, settings.bounces);
+                  ls.inputLights, ls.pointLights, ls.emitterSamples, ls.vpls, settings.inputLights.bounces);
       std::string perLevel;
       for (size_t l = 0; l < ls.lightsPerLevel.size(); ++l)
         if (ls.lightsPerLevel[l] > 0) perLevel += " S" + std::to_string(l) + ":" + std::to_string(ls.lightsPerLevel[l]);
-      if (settings.bruteForce)
+      if (settings.lightPass.bruteForce)
         std::printf("light pass brute force over S0 (%zu lights at every pixel)\n", ls.inputLights);
       else
         std::printf("LGH        L = %d, alpha %.3g, start level %d, interleave %dx%d, drawn%s\n", ls.levels,
-                    double(settings.alpha), settings.startLevel, settings.interleave, settings.interleave, perLevel.c_str());
-      if (settings.shadowSamples > 0)
-        std::printf("shadows    k = %d per pixel (%s), %s, filter %d passes\n", settings.shadowSamples,
-                    settings.shadowUniform ? "uniform" : "by contribution",
-                    settings.shadowSkipFinest ? "finest level skipped" : "all levels", settings.filterPasses);
-      if (settings.overdraw)
+                    double(settings.lightPass.alpha), settings.lightPass.startLevel, settings.lightPass.interleave, settings.lightPass.interleave, perLevel.c_str());
+      if (settings.shadows.samples > 0)
+        std::printf("shadows    k = %d per pixel (%s), %s, filter %d passes\n", settings.shadows.samples,
+                    settings.shadows.uniform ? "uniform" : "by contribution",
+                    settings.shadows.skipFinest ? "finest level skipped" : "all levels", settings.filter.passes);
+      if (settings.lightPass.overdraw)
         std::printf("overdraw   %.1f fragments rasterized per pixel (max %u), %.1f shaded\n", ls.rasterizedPerPixel,
                     ls.maxRasterized, ls.shadedPerPixel);
     }

@@ -36,8 +36,8 @@ RenderSettings sizedSettings(GLFWwindow* window, const ViewerState& state, bool 
   if (!fixedSize) {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window, &w, &h);
-    s.width = std::max(1, int(std::lround(float(w) * state.renderScale)));
-    s.height = std::max(1, int(std::lround(float(h) * state.renderScale)));
+    s.image.width = std::max(1, int(std::lround(float(w) * state.renderScale)));
+    s.image.height = std::max(1, int(std::lround(float(h) * state.renderScale)));
   }
   return s;
 }
@@ -203,8 +203,8 @@ void Viewer::step(bool forceRender) {
     info.scene = &sceneData_;
     info.context = context_.description();
     const RenderSettings s = frameSettings();
-    info.imageWidth = s.width;
-    info.imageHeight = s.height;
+    info.imageWidth = s.image.width;
+    info.imageHeight = s.image.height;
     info.lastFrame = rendered_ ? &lastFrame_ : nullptr;
     info.timings = &timings_;
     info.message = message_;
@@ -213,8 +213,8 @@ void Viewer::step(bool forceRender) {
   }
   handleInput(requests);
   applyLightChanges(requests.changedLights);
-  if (state_.view == Aov::Overdraw) state_.settings.overdraw = true;
-  if (state_.settings.camera != cameraSetting_ || requests.resetCamera) resetCamera();
+  if (state_.view == Aov::Overdraw) state_.settings.lightPass.overdraw = true;
+  if (state_.settings.image.camera != cameraSetting_ || requests.resetCamera) resetCamera();
 
   const bool hidden = minimized();
   if (!hidden && (forceRender || needsRender())) {
@@ -298,21 +298,21 @@ void Viewer::applyLightChanges(const std::vector<size_t>& changed) {
 }
 
 void Viewer::resetCamera() {
-  cameraSetting_ = state_.settings.camera;
+  cameraSetting_ = state_.settings.image.camera;
   camera_.reset(resolveCamera(sceneData_, frameSettings()), sceneData_.bounds.diagonal());
 }
 
 RenderSettings Viewer::frameSettings() const {
   RenderSettings s = sizedSettings(window_, state_, fixedSize_);
-  if (state_.view == Aov::Overdraw) s.overdraw = true;
+  if (state_.view == Aov::Overdraw) s.lightPass.overdraw = true;
   return s;
 }
 
 std::string Viewer::frameKey() const {
   // Every setting except the display-only ones, the camera's pose and the lights' version.
   RenderSettings s = frameSettings();
-  s.exposure = 0.0f;
-  s.toneMap.clear();
+  s.image.exposure = 0.0f;
+  s.image.toneMap.clear();
   std::ostringstream key;
   key.precision(9);
   visitSettings(s, [&](const auto& value, const SettingInfo& info) { key << info.name << '=' << value << ';'; });
@@ -328,7 +328,7 @@ void Viewer::render() {
   const RenderSettings s = frameSettings();
   renderedKey_ = frameKey();
   renderer_.setSettings(s);
-  frameView_ = makeCameraView(camera_.camera(), s.width, s.height);
+  frameView_ = makeCameraView(camera_.camera(), s.image.width, s.image.height);
   lastFrame_ = renderer_.render(frameView_);
   timings_.add(lastFrame_);
   rendered_ = true;
@@ -338,14 +338,14 @@ void Viewer::render() {
 
 void Viewer::display() {
   const RenderSettings& s = renderer_.settings();
-  if (displayImage_.width != s.width || displayImage_.height != s.height) displayImage_ = DisplayImage(s.width, s.height);
+  if (displayImage_.width != s.image.width || displayImage_.height != s.image.height) displayImage_ = DisplayImage(s.image.width, s.image.height);
   DisplayOptions options;
   options.encoding = displayEncodingOf(state_.view);
-  options.exposureEV = state_.settings.exposure;
-  options.toneMap = parseToneMap(state_.settings.toneMap);
+  options.exposureEV = state_.settings.image.exposure;
+  options.toneMap = parseToneMap(state_.settings.image.toneMap);
   options.largestCount = lastFrame_.lights.maxRasterized;
   displayPass_.execute(renderer_.texture(state_.view), options, displayImage_);
-  if (state_.pointsLevel > 0 && s.indirect && !s.bruteForce)
+  if (state_.pointsLevel > 0 && s.indirect && !s.lightPass.bruteForce)
     gridPointsPass_.execute(renderer_.hierarchy(), state_.pointsLevel, frameView_, renderer_.gbuffer().position,
                             state_.pointSize, displayImage_);
 }

@@ -70,7 +70,7 @@ class Viewer {
   GridPointsPass gridPointsPass_;
   DisplayImage displayImage_;
   CameraController camera_;
-  std::string cameraSetting_;      // settings.camera the controller was last reset to
+  std::string cameraSetting_;      // settings.image.camera the controller was last reset to
   CameraView frameView_;           // of the last rendered frame
   FrameStats lastFrame_;
   TimingHistory timings_;
@@ -78,7 +78,7 @@ class Viewer {
   std::string renderedKey_;        // frameKey() of the last frame (or of the last failed attempt)
   std::string message_;            // shown in the panel
   std::filesystem::path windowCapture_;  // write the next presented window here (script)
-  bool fixedSize_ = false;         // scripted: render at settings.width x height, not the window's size
+  bool fixedSize_ = false;         // scripted: render at settings.image.width x height, not the window's size
   bool showPanel_ = true;
   bool scripted_ = false;
   double lastTime_ = 0;

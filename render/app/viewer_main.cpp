@@ -54,13 +54,13 @@ int run(int argc, char** argv) {
   // Without a size the window opens at 1280 x 720 and renders at half that (lgh-render's default
   // 640 x 360): room for the panel, and frames as fast as lgh-render's.
   const bool sized = app.count("--width") > 0 || app.count("--height") > 0;
-  const int windowWidth = sized ? state.settings.width : 1280, windowHeight = sized ? state.settings.height : 720;
+  const int windowWidth = sized ? state.settings.image.width : 1280, windowHeight = sized ? state.settings.image.height : 720;
   if (!sized && app.count("--render-scale") == 0) state.renderScale = 0.5f;
 
   // Everything cheap is checked before the window opens: a typo costs milliseconds.
   state.view = lgh::parseAov(view);
-  if (state.view == lgh::Aov::Overdraw) state.settings.overdraw = true;
-  lgh::parseToneMap(state.settings.toneMap);
+  if (state.view == lgh::Aov::Overdraw) state.settings.lightPass.overdraw = true;
+  lgh::parseToneMap(state.settings.image.toneMap);
   const std::vector<lgh::ScriptCommand> commands = lgh::parseScript(script);
   const lgh::Scene scene = lgh::loadScene(scenePath);
   for (const std::string& w : scene.warnings) std::cerr << "lgh-viewer: warning: " << w << "\n";

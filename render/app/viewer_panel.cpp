@@ -199,11 +199,11 @@ PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
       std::string levels;
       for (size_t i = 0; i < l.lightsPerLevel.size(); ++i)
         if (l.lightsPerLevel[i] > 0) levels += " S" + std::to_string(i) + ":" + std::to_string(l.lightsPerLevel[i]);
-      if (state.settings.bruteForce)
+      if (state.settings.lightPass.bruteForce)
         ImGui::TextWrapped("brute force: every S0 light at every pixel");
       else
         ImGui::TextWrapped("L = %d, drawn%s", l.levels, levels.c_str());
-      if (state.settings.overdraw)
+      if (state.settings.lightPass.overdraw)
         ImGui::Text("overdraw %.1f fragments/pixel (max %u), %.1f shaded", l.rasterizedPerPixel, l.maxRasterized,
                     l.shadedPerPixel);
     }
@@ -226,7 +226,7 @@ PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
     }
     tooltip("final; direct; indirect (unshadowed); irradiance; ratio (raw visibility); visibility (filtered); "
             "overdraw (heat map, turns on counting); emission, albedo, normal, position");
-    if (state.view == Aov::Overdraw) state.settings.overdraw = true;  // the heat map needs the counts
+    if (state.view == Aov::Overdraw) state.settings.lightPass.overdraw = true;  // the heat map needs the counts
     const int levels = info.lastFrame ? info.lastFrame->lights.levels : 0;
     bool points = state.pointsLevel > 0;
     // S2 to start with: S1 is dense, the top levels hold a handful of lights.
@@ -274,7 +274,7 @@ PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
   }
 
   if (ImGui::CollapsingHeader("Render settings", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (drawSettings(state.settings, scene) && state.view == Aov::Overdraw) state.settings.overdraw = true;
+    if (drawSettings(state.settings, scene) && state.view == Aov::Overdraw) state.settings.lightPass.overdraw = true;
   }
 
   ImGui::PopItemWidth();

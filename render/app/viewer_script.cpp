@@ -55,38 +55,6 @@ bool parseVector(const std::string& text, glm::vec3& out) {
 
 }  // namespace
 
-void setSetting(RenderSettings& settings, const std::string& name, const std::string& value) {
-  bool found = false;
-  std::string names;
-  visitSettings(settings, [&](auto& field, const SettingInfo& info) {
-    using T = std::decay_t<decltype(field)>;
-    names += (names.empty() ? "" : ", ") + std::string(info.name);
-    if (name != info.name) return;
-    found = true;
-    const std::string where = "setting '" + name + "'";
-    if constexpr (std::is_same_v<T, bool>) {
-      if (value == "true" || value == "1" || value == "on")
-        field = true;
-      else if (value == "false" || value == "0" || value == "off")
-        field = false;
-      else
-        throw std::invalid_argument(where + ": '" + value + "' is not true or false");
-    } else if constexpr (std::is_arithmetic_v<T>) {
-      T v{};
-      if (!parseNumber(value, v)) throw std::invalid_argument(where + ": '" + value + "' is not a number");
-      if (info.min < info.max && (double(v) < info.min || double(v) > info.max)) {
-        std::ostringstream msg;
-        msg << where << ": " << value << " is outside [" << info.min << ", " << info.max << "]";
-        throw std::invalid_argument(msg.str());
-      }
-      field = v;
-    } else {
-      field = value;
-    }
-  });
-  if (!found) throw std::invalid_argument("unknown setting '" + name + "' (one of: " + names + ")");
-}
-
 std::vector<ScriptCommand> parseScript(const std::string& script) {
   std::vector<ScriptCommand> commands;
   std::stringstream in(script);

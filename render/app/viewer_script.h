@@ -36,8 +36,5 @@ struct ScriptCommand {
 // Throws std::invalid_argument("script: '<command>': <problem>").
 std::vector<ScriptCommand> parseScript(const std::string& script);
 
-// Sets the render setting called `name` (its CLI name) from text, range-checked as the CLI checks it.
-// Throws std::invalid_argument naming the setting and its range, or the known names.
-void setSetting(RenderSettings& settings, const std::string& name, const std::string& value);
 
 }  // namespace lgh

@@ -4,7 +4,7 @@
 //                 light (e.g. Sponza with 4,096 points)
 //   emitters      points on emissive triangles (chosen by power) as oriented direct lights
 //   VPLs          oriented VPLs at the diffuse hits of light paths from every light source
-//   in:  SceneGpu (BVH, materials, punctual lights), options
+//   in:  SceneGpu (BVH, materials, punctual lights), InputLightSettings
 //   out: InputLights (gpu::GpuLight buffer and what it holds)
 
 #include <cstdint>
@@ -12,21 +12,9 @@
 #include "render/gl/buffer.h"
 #include "render/passes/vpl_pass.h"
 #include "render/scene/scene_gpu.h"
+#include "render/settings.h"
 
 namespace lgh {
-
-struct InputLightOptions {
-  bool pointLights = false;  // the scene's point lights go into S0 (and not to the direct pass)
-  size_t emitterSamples = 0;
-  size_t vplBudget = 0;
-  int bounces = 1;
-  std::uint32_t seed = 1;
-  bool operator==(const InputLightOptions& o) const {
-    return pointLights == o.pointLights && emitterSamples == o.emitterSamples && vplBudget == o.vplBudget &&
-           bounces == o.bounces && seed == o.seed;
-  }
-  bool operator!=(const InputLightOptions& o) const { return !(*this == o); }
-};
 
 struct InputLights {
   gl::Buffer lights;  // gpu::GpuLight, `count` valid
@@ -37,7 +25,8 @@ struct InputLights {
 class InputLightsPass {
  public:
   explicit InputLightsPass(const SceneGpu& scene);
-  void execute(const InputLightOptions& options, InputLights& out);
+  // pointLightsToS0: the scene's point lights go into S0 (and not to the direct pass).
+  void execute(const InputLightSettings& settings, bool pointLightsToS0, InputLights& out);
   const VplPass& vplPass() const { return vplPass_; }
 
  private:

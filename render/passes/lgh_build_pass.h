@@ -50,8 +50,7 @@ struct GpuHierarchy {
 
 class LghBuildPass {
  public:
-  // Vertex keys are 32-bit linear indices: (2^(L-1)+1)^3 < 2^32 allows L <= 11 (S1 cell = H/1024).
-  static constexpr int kMaxLevels = 11;
+  static constexpr int kMaxLevels = int(gpu::kMaxBuildLevels);
 
   explicit LghBuildPass(bool floatAtomicsAvailable);
   bool floatAtomicsAvailable() const { return floatAtomicsAvailable_; }

@@ -58,8 +58,8 @@ LightVolumePass::LightVolumePass(bool floatAtomics) : floatAtomics_(floatAtomics
 const gl::Program& LightVolumePass::program(bool s0Input, const LightPassOptions& options) {
   gl::Defines defines;
   if (s0Input) defines.emplace_back("LGH_S0_INPUT", "1");
-  if (options.countFragments) defines.emplace_back("LGH_COUNT_OVERDRAW", "1");
-  if (options.shadowSamples > 0) {
+  if (options.pass.overdraw) defines.emplace_back("LGH_COUNT_OVERDRAW", "1");
+  if (options.shadows.samples > 0) {
     defines.emplace_back("LGH_SELECT_SHADOWS", "1");
     if (!floatAtomics_) defines.emplace_back("LGH_SELECTION_NO_ATOMICS", "1");
   }
@@ -72,17 +72,17 @@ const gl::Program& LightVolumePass::program(bool s0Input, const LightPassOptions
 
 LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
                                         const LightPassOptions& options, LightPassTarget& target) {
-  if (options.countFragments && !target.fragmentCounts)
+  if (options.pass.overdraw && !target.fragmentCounts)
     throw std::invalid_argument("light pass: counting fragments needs a fragment-count target");
-  if (options.shadowSamples > 0 &&
-      (!target.shadowSlots || target.shadowSlots->k != options.shadowSamples ||
+  if (options.shadows.samples > 0 &&
+      (!target.shadowSlots || target.shadowSlots->k != options.shadows.samples ||
        target.shadowSlots->size != target.layout.targetSize()))
     throw std::invalid_argument("light pass: shadow selection needs slots allocated for the target and k");
-  if (options.firstLevel != 0 && options.firstLevel != 1)
+  if (options.pass.startLevel != 0 && options.pass.startLevel != 1)
     throw std::invalid_argument("light pass: the first level is 0 (S0) or 1 (S1), not " +
-                                std::to_string(options.firstLevel));
+                                std::to_string(options.pass.startLevel));
   // Brute force draws no grid level; an unbuilt hierarchy has none either.
-  const int L = options.bruteForce || hierarchy.levels.empty() ? 0 : hierarchy.grid.levels;
+  const int L = options.pass.bruteForce || hierarchy.levels.empty() ? 0 : hierarchy.grid.levels;
   if (L > int(gpu::kMaxLightPassLevels) - 1)
     throw std::invalid_argument("light pass: " + std::to_string(L) + " levels, at most " +
                                 std::to_string(gpu::kMaxLightPassLevels - 1) + " supported");
@@ -91,16 +91,16 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
   std::vector<Draw> draws;
   LightPassDraws counts;
   counts.lightsPerLevel.assign(size_t(std::max(L, 0)) + 1, 0);
-  const bool drawS0 = options.bruteForce || (options.firstLevel == 0 && L >= 1);
+  const bool drawS0 = options.pass.bruteForce || (options.pass.startLevel == 0 && L >= 1);
   if (L >= 1 && hierarchy.levels.size() < size_t(L) + 1) throw std::logic_error("light pass: the hierarchy's level table is incomplete");
   if (drawS0) {
     for (size_t first = 0; first < lightCount; first += maxBlockLights_) {
       const size_t n = std::min(maxBlockLights_, lightCount - first);
-      draws.push_back({&lights, true, options.bruteForce, 0, n, first, n});
+      draws.push_back({&lights, true, options.pass.bruteForce, 0, n, first, n});
     }
     counts.lightsPerLevel[0] = lightCount;
   }
-  if (!options.bruteForce && L >= 1) {
+  if (!options.pass.bruteForce && L >= 1) {
     // Levels 1..L-1 are contiguous in the merged buffer: one instanced draw of cubes.
     const size_t gridLights = hierarchy.gridLightCount;
     const size_t cubesEnd = hierarchy.levels[size_t(L)].offset;
@@ -118,18 +118,18 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
   for (size_t i = 0; i < draws.size(); ++i) {
     const Draw& d = draws[i];
     gpu::LightPassUniforms u{};
-    u.alphaTopCellClampScale = glm::vec4(options.alpha, float(hierarchy.grid.topCellSize), options.clampDistance,
+    u.alphaTopCellClampScale = glm::vec4(options.pass.alpha, float(hierarchy.grid.topCellSize), options.clampDistance,
                                          float(n * n));
-    u.levels = glm::uvec4(unsigned(options.firstLevel), unsigned(std::max(L, 0)), unsigned(d.first),
+    u.levels = glm::uvec4(unsigned(options.pass.startLevel), unsigned(std::max(L, 0)), unsigned(d.first),
                           unsigned(d.fullScreen));
     u.tiles = glm::uvec4(unsigned(n), unsigned(target.layout.tileSize.x), unsigned(target.layout.tileSize.y),
                          unsigned(d.boundOffset));
     u.image = glm::uvec4(unsigned(target.layout.imageSize.x), unsigned(target.layout.imageSize.y),
-                         unsigned(options.bruteForce), 0u);
+                         unsigned(options.pass.bruteForce), 0u);
     for (int l = 1; l <= L; ++l) u.levelOffsets[l / 4][l % 4] = unsigned(hierarchy.levels[size_t(l)].offset);
-    u.selection = glm::uvec4(unsigned(options.shadowSamples),
-                             (options.skipFinestForShadows ? gpu::kSelectSkipFinest : 0u) |
-                                 (options.uniformSelection ? gpu::kSelectUniform : 0u),
+    u.selection = glm::uvec4(unsigned(options.shadows.samples),
+                             (options.shadows.skipFinest ? gpu::kSelectSkipFinest : 0u) |
+                                 (options.shadows.uniform ? gpu::kSelectUniform : 0u),
                              options.frameSeed, 0u);
     std::memcpy(staging.data() + i * uniformStride_, &u, sizeof(u));
   }
@@ -142,11 +142,11 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
   glViewport(0, 0, size.x, size.y);
   const float zero[4] = {0, 0, 0, 0};
   glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, zero);
-  if (options.countFragments) {
+  if (options.pass.overdraw) {
     target.fragmentCounts->clearUint(0);
     target.fragmentCounts->bindImage(0, GL_READ_WRITE);
   }
-  if (options.shadowSamples > 0) {
+  if (options.shadows.samples > 0) {
     target.shadowSlots->totals.clear();
     target.shadowSlots->slots.clearUint(gpu::kNoLight);
     target.shadowSlots->totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);

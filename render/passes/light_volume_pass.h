@@ -17,20 +17,18 @@
 #include "render/gl/texture.h"
 #include "render/passes/interleave_pass.h"
 #include "render/passes/lgh_build_pass.h"
+#include "render/settings.h"
 
 namespace lgh {
 
+// One light pass: the user's settings (render/settings.h) and what the frame resolves. The pass reads
+// alpha, the start level, brute force and overdraw from `pass` (interleaving is the target's layout).
 struct LightPassOptions {
-  float alpha = 1.0f;          // R_l = alpha h_l
-  int firstLevel = 1;          // finest level blended: 1 (S1, the paper's default) or 0 (S0 itself)
-  float clampDistance = 0.0f;  // d_c
-  bool bruteForce = false;     // every S0 light, full-screen, weight 1 (ignores the hierarchy)
-  bool countFragments = false; // count every rasterized fragment per pixel (an image atomic each)
+  LightPassSettings pass;
   // Shadow-sample selection (DESIGN 5): k slots per pixel, filled in proportion to each light's
-  // contribution (or uniformly, for comparison); 0 = no selection.
-  int shadowSamples = 0;
-  bool skipFinestForShadows = true;  // the paper: S1 lights are not picked for shadow rays
-  bool uniformSelection = false;
+  // contribution (or uniformly, for comparison); samples = 0: no selection.
+  ShadowSettings shadows{0};
+  float clampDistance = 0.0f;  // d_c, resolved
   unsigned frameSeed = 0;
 };
 

@@ -11,8 +11,7 @@ ShadowRayPass::ShadowRayPass() : program_(gl::Program::compute("shadow_rays.comp
 
 void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const ShadowSlots& slots,
                             const TileLayout& layout, const gl::Buffer& inputLights, const GpuHierarchy& hierarchy,
-                            const LightPassOptions& lightPass, const ShadowRayOptions& options,
-                            gl::Texture2D& rawRatio) const {
+                            const LightPassOptions& lightPass, gl::Texture2D& rawRatio) const {
   scene.bindForCompute();
   gbuffer.bindForReading();
   inputLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
@@ -23,15 +22,15 @@ void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const
   program_.set("samples", unsigned(slots.k));
   program_.set("tilesPerAxis", unsigned(layout.tilesPerAxis));
   program_.set("tileSize", glm::uvec2(layout.tileSize));
-  program_.set("spread", options.spread);
-  program_.set("uniformSelection", int(lightPass.uniformSelection));
+  program_.set("spread", lightPass.shadows.spread);
+  program_.set("uniformSelection", int(lightPass.shadows.uniform));
   program_.set("clampDistance", lightPass.clampDistance);
-  program_.set("alpha", lightPass.alpha);
+  program_.set("alpha", lightPass.pass.alpha);
   program_.set("topCellSize", float(hierarchy.grid.topCellSize));
-  program_.set("firstLevel", unsigned(lightPass.firstLevel));
+  program_.set("firstLevel", unsigned(lightPass.pass.startLevel));
   program_.set("levels", unsigned(std::max(hierarchy.grid.levels, 0)));
-  program_.set("bruteForce", int(lightPass.bruteForce));
-  program_.set("frameSeed", options.frameSeed);
+  program_.set("bruteForce", int(lightPass.pass.bruteForce));
+  program_.set("frameSeed", lightPass.frameSeed);
   program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   gl::checkErrors("shadow rays");
@@ -40,7 +39,7 @@ void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const
 ShadowFilterPass::ShadowFilterPass() : program_(gl::Program::compute("atrous.comp")) {}
 
 void ShadowFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& rawRatio, const gl::Texture2D& irradiance,
-                               const ShadowFilterOptions& options, gl::Texture2D& filteredRatio) {
+                               const ShadowFilterSettings& options, gl::Texture2D& filteredRatio) {
   if (ping_.width() != gbuffer.width || ping_.height() != gbuffer.height) {
     ping_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
     pong_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);

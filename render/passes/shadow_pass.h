@@ -14,35 +14,24 @@
 
 namespace lgh {
 
-struct ShadowRayOptions {
-  float spread = 1.0f;  // jitter inside a cluster: its standard deviation is spread x the cluster's
-  unsigned frameSeed = 0;
-};
-
 class ShadowRayPass {
  public:
   ShadowRayPass();
-  // `lightPass` is what the light pass that filled `slots` was run with (selection mode, blending).
+  // `lightPass` is what the light pass that filled `slots` was run with (blending, selection mode and
+  // spread, frame seed).
   void execute(const SceneGpu& scene, const GBuffer& gbuffer, const ShadowSlots& slots, const TileLayout& layout,
                const gl::Buffer& inputLights, const GpuHierarchy& hierarchy, const LightPassOptions& lightPass,
-               const ShadowRayOptions& options, gl::Texture2D& rawRatio) const;
+               gl::Texture2D& rawRatio) const;
 
  private:
   gl::Program program_;
-};
-
-struct ShadowFilterOptions {
-  int passes = 5;              // 0: the raw ratio, unfiltered
-  float normalPower = 64.0f;
-  float planeSigma = 1.0f;     // tangent-plane distance in pixel footprints (x the step) at weight e^-1/2
-  float ratioSigma = 0.25f;    // ratio difference at weight e^-1/2
 };
 
 class ShadowFilterPass {
  public:
   ShadowFilterPass();
   void execute(const GBuffer& gbuffer, const gl::Texture2D& rawRatio, const gl::Texture2D& irradiance,
-               const ShadowFilterOptions& options, gl::Texture2D& filteredRatio);
+               const ShadowFilterSettings& options, gl::Texture2D& filteredRatio);
 
  private:
   gl::Program program_;

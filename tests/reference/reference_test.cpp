@@ -36,16 +36,16 @@ struct CornellFrame {
 
   static RenderSettings small() {
     RenderSettings s;
-    s.width = 64;
-    s.height = 36;
-    s.vpls = 1000;
-    s.shadowSamples = 0;
+    s.image.width = 64;
+    s.image.height = 36;
+    s.inputLights.vpls = 1000;
+    s.shadows.samples = 0;
     return s;
   }
   CornellFrame() : scene(loadScene(sourceDir() / "data/cornell_box.gltf")), gpu(scene), settings(small()), renderer(gpu, settings) {
-    renderer.render(makeCameraView(resolveCamera(scene, settings), settings.width, settings.height));
-    input.width = settings.width;
-    input.height = settings.height;
+    renderer.render(makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height));
+    input.width = settings.image.width;
+    input.height = settings.image.height;
     input.position = renderer.readImage(Aov::Position).pixels;
     input.normal = renderer.readImage(Aov::Normal).pixels;
     input.lights = fromGpuLights(renderer.inputLights().lights.download<gpu::GpuLight>(renderer.inputLights().count));
@@ -54,10 +54,10 @@ struct CornellFrame {
   // BruteForcePass on the renderer's G-buffer (shadowed through the GPU BVH when asked).
   ImageRGBA glBruteForce(bool shadowed) const {
     static BruteForcePass pass;
-    gl::Texture2D out(settings.width, settings.height, GL_RGBA32F);
+    gl::Texture2D out(settings.image.width, settings.image.height, GL_RGBA32F);
     pass.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, renderer.clampDistance(),
                  out, shadowed ? &gpu : nullptr);
-    return fromGLRows(settings.width, settings.height, out.readRGBA());
+    return fromGLRows(settings.image.width, settings.image.height, out.readRGBA());
   }
 };
 
@@ -107,9 +107,9 @@ TEST_F(ReferenceTest, UnshadowedSumMatchesGlBruteForce) {
   // The compute-shader sum (float, batched) and the rasterized brute force (every light full-screen).
   const Agreement compute = compare(f.glBruteForce(false), ref, ref.unshadowed);
   RenderSettings s = f.settings;
-  s.bruteForce = true;
+  s.lightPass.bruteForce = true;
   f.renderer.setSettings(s);
-  f.renderer.render(makeCameraView(resolveCamera(f.scene, s), s.width, s.height));
+  f.renderer.render(makeCameraView(resolveCamera(f.scene, s), s.image.width, s.image.height));
   const Agreement raster = compare(f.renderer.readImage(Aov::Irradiance), ref, ref.unshadowed);
   std::printf("  %zu lights: compute brute force max rel. %.2e, rel. RMSE %.2e; rasterized max rel. %.2e, rel. RMSE %.2e\n",
               f.input.lights.size(), compute.maxRelative, compute.relativeRmse, raster.maxRelative, raster.relativeRmse);

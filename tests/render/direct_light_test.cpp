@@ -44,8 +44,8 @@ Rendered render(const std::filesystem::path& file, int width = 160, int height =
   const SceneGpu gpu(scene);
   RenderSettings settings;
   settings.indirect = false;  // direct light alone, against its closed form
-  settings.width = width;
-  settings.height = height;
+  settings.image.width = width;
+  settings.image.height = height;
   Renderer renderer(gpu, settings);
   const FrameStats stats = renderer.render(makeCameraView(resolveCamera(scene, settings), width, height));
   EXPECT_EQ(stats.nonFinitePixels, 0u);

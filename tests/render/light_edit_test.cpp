@@ -12,12 +12,12 @@ namespace {
 class LightEditTest : public GLTest {
  protected:
   LightEditTest() : scene(loadScene(sourceDir() / "data" / "cornell_box.gltf")) {
-    settings.width = 96;
-    settings.height = 54;
-    settings.vpls = 3000;
-    settings.shadowSamples = 0;  // no per-frame shadow sampling: frames of the same lights are equal
+    settings.image.width = 96;
+    settings.image.height = 54;
+    settings.inputLights.vpls = 3000;
+    settings.shadows.samples = 0;  // no per-frame shadow sampling: frames of the same lights are equal
   }
-  CameraView view() const { return makeCameraView(resolveCamera(scene, settings), settings.width, settings.height); }
+  CameraView view() const { return makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height); }
 
   Scene scene;
   RenderSettings settings;
@@ -55,6 +55,24 @@ TEST_F(LightEditTest, ChangedLightRebuildsVplsAndHierarchy) {
   EXPECT_TRUE(renderer.render(view()).lightsRebuilt);
   EXPECT_LT(relativeRmse(renderer.readImage(Aov::Direct), direct), 1e-6);
   EXPECT_LT(relativeRmse(renderer.readImage(Aov::Indirect), indirect), 1e-4);
+}
+
+// Levels changed while brute force is on (no hierarchy drawn) must be built once brute force is off.
+TEST_F(LightEditTest, LevelsChangedDuringBruteForceAreBuilt) {
+  SceneGpu gpu(scene);
+  Renderer renderer(gpu, settings);
+  renderer.render(view());
+  const int automatic = renderer.hierarchy().grid.levels;
+  const int requested = automatic > 2 ? automatic - 1 : automatic + 1;
+  RenderSettings s = settings;
+  s.lightPass.bruteForce = true;
+  s.hierarchy.levels = requested;
+  renderer.setSettings(s);
+  EXPECT_FALSE(renderer.render(view()).lightsRebuilt) << "brute force needs no hierarchy";
+  s.lightPass.bruteForce = false;
+  renderer.setSettings(s);
+  EXPECT_TRUE(renderer.render(view()).lightsRebuilt);
+  EXPECT_EQ(renderer.hierarchy().grid.levels, requested);
 }
 
 TEST_F(LightEditTest, LightIndexOutOfRangeThrows) {

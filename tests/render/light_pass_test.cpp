@@ -24,12 +24,12 @@ struct SceneOnGpu {
 
 RenderSettings smallSettings(int vpls) {
   RenderSettings s;
-  s.width = 160;
-  s.height = 90;
-  s.vpls = vpls;
-  s.bounces = 2;
-  s.emitterSamples = 4096;
-  s.shadowSamples = 0;  // these tests read the unshadowed irradiance
+  s.image.width = 160;
+  s.image.height = 90;
+  s.inputLights.vpls = vpls;
+  s.inputLights.bounces = 2;
+  s.inputLights.emitterSamples = 4096;
+  s.shadows.samples = 0;  // these tests read the unshadowed irradiance
   return s;
 }
 
@@ -41,7 +41,7 @@ struct Frame {
 Frame renderIrradiance(Renderer& renderer, const Scene& scene) {
   const RenderSettings& s = renderer.settings();
   Frame f;
-  f.stats = renderer.render(makeCameraView(resolveCamera(scene, s), s.width, s.height));
+  f.stats = renderer.render(makeCameraView(resolveCamera(scene, s), s.image.width, s.image.height));
   EXPECT_EQ(f.stats.nonFinitePixels, 0u);
   f.irradiance = renderer.readImage(Aov::Irradiance);
   return f;
@@ -51,10 +51,10 @@ Frame renderIrradiance(Renderer& renderer, const Scene& scene) {
 ImageRGBA exactIrradiance(const Renderer& renderer) {
   static BruteForcePass bruteForce;
   const RenderSettings& s = renderer.settings();
-  gl::Texture2D out(s.width, s.height, GL_RGBA32F);
+  gl::Texture2D out(s.image.width, s.image.height, GL_RGBA32F);
   bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
                      renderer.clampDistance(), out);
-  return fromGLRows(s.width, s.height, out.readRGBA());
+  return fromGLRows(s.image.width, s.image.height, out.readRGBA());
 }
 
 class LightPassTest : public GLTest {};
@@ -62,8 +62,8 @@ class LightPassTest : public GLTest {};
 TEST_F(LightPassTest, RasterizedBruteForceEqualsComputeSum) {
   SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
   RenderSettings settings = smallSettings(3000);
-  settings.bruteForce = true;
-  settings.overdraw = true;
+  settings.lightPass.bruteForce = true;
+  settings.lightPass.overdraw = true;
   Renderer renderer(s.gpu, settings);
   const Frame raster = renderIrradiance(renderer, s.scene);
   const ImageRGBA exact = exactIrradiance(renderer);
@@ -82,7 +82,7 @@ TEST_F(LightPassTest, RasterizedBruteForceEqualsComputeSum) {
 TEST_F(LightPassTest, ComputeSumCountsEveryLight) {
   SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
   RenderSettings settings = smallSettings(100000);
-  settings.bounces = 1;
+  settings.inputLights.bounces = 1;
   Renderer renderer(s.gpu, settings);
   renderIrradiance(renderer, s.scene);
   ASSERT_GT(renderer.inputLights().count, 70000u);
@@ -110,8 +110,8 @@ TEST_F(LightPassTest, MatchesCpuEvaluatorPixelByPixel) {
   for (int firstLevel : {1, 0}) {
     SCOPED_TRACE("first level " + std::to_string(firstLevel));
     RenderSettings settings = smallSettings(4000);
-    settings.startLevel = firstLevel;
-    settings.alpha = 1.0f;
+    settings.lightPass.startLevel = firstLevel;
+    settings.lightPass.alpha = 1.0f;
     Renderer renderer(s.gpu, settings);
     const Frame frame = renderIrradiance(renderer, s.scene);
     const ImageRGBA position = renderer.readImage(Aov::Position), normal = renderer.readImage(Aov::Normal);
@@ -120,7 +120,7 @@ TEST_F(LightPassTest, MatchesCpuEvaluatorPixelByPixel) {
         fromGpuLights(renderer.inputLights().lights.download<gpu::GpuLight>(renderer.inputLights().count));
     const Hierarchy cpu = buildGather(lights, renderer.hierarchy().grid);
     EvalOptions options;
-    options.alpha = settings.alpha;
+    options.alpha = settings.lightPass.alpha;
     options.clampDistance = renderer.clampDistance();
     options.firstLevel = firstLevel;
     const double scale = meanLuminance(frame.irradiance);
@@ -161,8 +161,8 @@ void expectConvergence(const ConvergenceCase& c) {
   for (int startLevel : {0, 1}) {
     double previous = 1e30;
     for (float alpha : {0.5f, 1.0f, 2.0f, 4.0f}) {
-      settings.alpha = alpha;
-      settings.startLevel = startLevel;
+      settings.lightPass.alpha = alpha;
+      settings.lightPass.startLevel = startLevel;
       renderer.setSettings(settings);
       const Frame frame = renderIrradiance(renderer, s.scene);
       const double error = relativeRmse(frame.irradiance, exactIrradiance(renderer));
@@ -203,12 +203,12 @@ TEST_F(LightPassTest, ErrorFallsWithAlphaOnEmissiveCornellBox) {
 TEST_F(LightPassTest, InterleavingPreservesEnergy) {
   SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
   RenderSettings settings = smallSettings(20000);
-  settings.overdraw = true;
+  settings.lightPass.overdraw = true;
   Renderer renderer(s.gpu, settings);
   const Frame reference = renderIrradiance(renderer, s.scene);
   const double referenceMean = meanLuminance(reference.irradiance);
   for (int n : {2, 4}) {
-    settings.interleave = n;
+    settings.lightPass.interleave = n;
     renderer.setSettings(settings);
     const Frame frame = renderIrradiance(renderer, s.scene);
     const double mean = meanLuminance(frame.irradiance);
@@ -225,12 +225,12 @@ TEST_F(LightPassTest, InterleavingPreservesEnergy) {
 TEST_F(LightPassTest, InterleavedBruteForceDrawsEachLightIntoOneTile) {
   SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
   RenderSettings settings = smallSettings(0);
-  settings.emitterSamples = 0;
-  settings.vpls = 3200;
-  settings.bounces = 1;
-  settings.bruteForce = true;
-  settings.overdraw = true;
-  settings.interleave = 4;
+  settings.inputLights.emitterSamples = 0;
+  settings.inputLights.vpls = 3200;
+  settings.inputLights.bounces = 1;
+  settings.lightPass.bruteForce = true;
+  settings.lightPass.overdraw = true;
+  settings.lightPass.interleave = 4;
   Renderer renderer(s.gpu, settings);
   const Frame frame = renderIrradiance(renderer, s.scene);
   const size_t count = renderer.inputLights().count;

@@ -56,13 +56,13 @@ TEST_F(ShadowTest, SelectionFrequenciesFollowContributions) {
     for (int k : {1, 4}) {
       SCOPED_TRACE("interleave " + std::to_string(n) + ", k = " + std::to_string(k));
       RenderSettings settings;
-      settings.width = settings.height = 8;
-      settings.maxDirectLights = 0;  // the 12 point lights are S0
-      settings.vpls = 0;
-      settings.emitterSamples = 0;
-      settings.bruteForce = true;    // every light at every pixel: selection among all S0 lights
-      settings.interleave = n;
-      settings.shadowSamples = k;
+      settings.image.width = settings.image.height = 8;
+      settings.inputLights.maxDirectLights = 0;  // the 12 point lights are S0
+      settings.inputLights.vpls = 0;
+      settings.inputLights.emitterSamples = 0;
+      settings.lightPass.bruteForce = true;    // every light at every pixel: selection among all S0 lights
+      settings.lightPass.interleave = n;
+      settings.shadows.samples = k;
       Renderer renderer(gpu, settings);
       const CameraView view = makeCameraView(resolveCamera(scene, settings), 8, 8);
       renderer.render(view);
@@ -133,25 +133,25 @@ TEST_F(ShadowTest, ImportanceSelectionBeatsUniform) {
   const Scene scene = loadScene(sourceDir() / "data/cornell_box.gltf");
   const SceneGpu gpu(scene);
   RenderSettings settings;
-  settings.width = 96;
-  settings.height = 54;
-  settings.vpls = 3000;
-  settings.bounces = 1;
-  settings.bruteForce = true;
+  settings.image.width = 96;
+  settings.image.height = 54;
+  settings.inputLights.vpls = 3000;
+  settings.inputLights.bounces = 1;
+  settings.lightPass.bruteForce = true;
   Renderer renderer(gpu, settings);
-  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.width, settings.height);
+  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
   renderer.render(view);
 
   static BruteForcePass bruteForce;
-  gl::Texture2D exactTexture(settings.width, settings.height, GL_RGBA32F);
+  gl::Texture2D exactTexture(settings.image.width, settings.image.height, GL_RGBA32F);
   bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
                      renderer.clampDistance(), exactTexture, &gpu);
-  const ImageRGBA exact = fromGLRows(settings.width, settings.height, exactTexture.readRGBA());
+  const ImageRGBA exact = fromGLRows(settings.image.width, settings.image.height, exactTexture.readRGBA());
 
   auto shadowedError = [&](bool uniform, int k, int filterPasses) {
-    settings.shadowUniform = uniform;
-    settings.shadowSamples = k;
-    settings.filterPasses = filterPasses;
+    settings.shadows.uniform = uniform;
+    settings.shadows.samples = k;
+    settings.filter.passes = filterPasses;
     renderer.setSettings(settings);
     renderer.render(view);
     ImageRGBA shadowed = renderer.readImage(Aov::Irradiance);

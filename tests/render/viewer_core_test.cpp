@@ -59,10 +59,10 @@ TEST(ViewerScript, SettingsByTheirCliNamesWithinTheirRanges) {
   setSetting(s, "vpls", "5000");
   setSetting(s, "alpha", "2.5");
   setSetting(s, "tonemap", "reinhard");
-  EXPECT_FALSE(s.shadowSkipFinest);
-  EXPECT_EQ(s.vpls, 5000);
-  EXPECT_FLOAT_EQ(s.alpha, 2.5f);
-  EXPECT_EQ(s.toneMap, "reinhard");
+  EXPECT_FALSE(s.shadows.skipFinest);
+  EXPECT_EQ(s.inputLights.vpls, 5000);
+  EXPECT_FLOAT_EQ(s.lightPass.alpha, 2.5f);
+  EXPECT_EQ(s.image.toneMap, "reinhard");
   try {
     setSetting(s, "alpha", "0.1");
     ADD_FAILURE() << "alpha 0.1 accepted";

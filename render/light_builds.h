@@ -1,0 +1,51 @@
+#pragma once
+// What the light-dependent part of a frame must (re)build: the input lights S0 and the hierarchy over
+// them. Both depend on the lights and their settings, not on the camera; the renderer asks for a plan
+// each frame and reports each build it actually ran. A setting changed while its build was not needed
+// (brute force draws no hierarchy) is therefore still honoured when the build is next needed.
+// No GL here, so the rules are tested without a GPU (tests/engine/light_builds_test.cpp).
+
+#include <optional>
+
+#include "render/settings.h"
+
+namespace lgh {
+
+// Everything S0 is made from.
+struct InputLightKey {
+  InputLightSettings settings;
+  bool pointLightsToS0 = false;  // the scene's point lights go into S0 (too many for exact direct light)
+  unsigned lightsVersion = 0;    // SceneGpu::lightsVersion(): a punctual light was edited
+  bool operator==(const InputLightKey& o) const {
+    return settings == o.settings && pointLightsToS0 == o.pointLightsToS0 && lightsVersion == o.lightsVersion;
+  }
+  bool operator!=(const InputLightKey& o) const { return !(*this == o); }
+};
+
+class LightBuilds {
+ public:
+  struct Plan {
+    bool inputLights = false;  // build S0
+    bool hierarchy = false;    // build the hierarchy over S0
+  };
+
+  // What a frame that wants S0 from `key` and (when `drawsHierarchy`) a hierarchy of `levels` must build.
+  Plan plan(const InputLightKey& key, int levels, bool drawsHierarchy) const {
+    Plan p;
+    p.inputLights = inputLights_ != key;
+    p.hierarchy = drawsHierarchy && (p.inputLights || hierarchyLevels_ != levels);
+    return p;
+  }
+  // Records a build that ran. A new S0 invalidates the hierarchy built over the old one.
+  void builtInputLights(const InputLightKey& key) {
+    inputLights_ = key;
+    hierarchyLevels_.reset();
+  }
+  void builtHierarchy(int levels) { hierarchyLevels_ = levels; }
+
+ private:
+  std::optional<InputLightKey> inputLights_;  // what S0 was built from; none yet
+  std::optional<int> hierarchyLevels_;        // the level setting the hierarchy was built with; none yet
+};
+
+}  // namespace lgh

@@ -1,0 +1,67 @@
+#include "render/settings.h"
+
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+
+namespace lgh {
+namespace {
+
+// Whole-string number parsing: "2x", "" and out-of-range integers fail.
+template <typename T>
+bool parseNumber(const std::string& text, T& out) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  if constexpr (std::is_integral_v<T>) {
+    const long long v = std::strtoll(text.c_str(), &end, 10);
+    if (v < (long long)std::numeric_limits<T>::min() || v > (long long)std::numeric_limits<T>::max()) return false;
+    out = T(v);
+  } else {
+    out = T(std::strtod(text.c_str(), &end));
+  }
+  return *end == '\0';
+}
+
+}  // namespace
+
+void setSetting(RenderSettings& settings, const std::string& name, const std::string& value) {
+  bool found = false;
+  std::string names;
+  visitSettings(settings, [&](auto& field, const SettingInfo& info) {
+    using T = std::decay_t<decltype(field)>;
+    names += (names.empty() ? "" : ", ") + std::string(info.name);
+    if (name != info.name) return;
+    found = true;
+    const std::string where = "setting '" + name + "'";
+    if constexpr (std::is_same_v<T, bool>) {
+      if (value == "true" || value == "1" || value == "on")
+        field = true;
+      else if (value == "false" || value == "0" || value == "off")
+        field = false;
+      else
+        throw std::invalid_argument(where + ": '" + value + "' is not true or false");
+    } else if constexpr (std::is_arithmetic_v<T>) {
+      T v{};
+      if (!parseNumber(value, v)) throw std::invalid_argument(where + ": '" + value + "' is not a number");
+      if (info.min < info.max && (double(v) < info.min || double(v) > info.max)) {
+        std::ostringstream msg;
+        msg << where << ": " << value << " is outside [" << info.min << ", " << info.max << "]";
+        throw std::invalid_argument(msg.str());
+      }
+      field = v;
+    } else {
+      field = value;
+    }
+  });
+  if (!found) throw std::invalid_argument("unknown setting '" + name + "' (one of: " + names + ")");
+}
+
+void applySetting(RenderSettings& settings, const std::string& assignment) {
+  const size_t eq = assignment.find('=');
+  if (eq == std::string::npos) throw std::invalid_argument("'" + assignment + "': expected NAME=VALUE");
+  setSetting(settings, assignment.substr(0, eq), assignment.substr(eq + 1));
+}
+
+}  // namespace lgh
