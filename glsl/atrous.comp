@@ -6,13 +6,15 @@
 //   stage 0: (raw ratio, irradiance) -> (S, U)
 //   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U)
 //   stage 2: (S, U) -> filtered ratio S / U; the raw ratio where no neighbour received light (U = 0)
+#include "shared/bindings.h"
+#include "shared/color.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
 
-layout(binding = 4) uniform sampler2D signalIn;    // stage 0: raw ratio (r); 1, 2: (S, U) in r, g
-layout(binding = 5) uniform sampler2D irradiance;  // unshadowed irradiance (stage 0), raw ratio (stage 2)
-layout(rgba32f, binding = 0) uniform writeonly image2D signalOut;
+layout(binding = LGH_TEXTURE_FILTER_SIGNAL) uniform sampler2D signalIn;    // stage 0: raw ratio (r); 1, 2: (S, U) in r, g
+layout(binding = LGH_TEXTURE_FILTER_SECOND) uniform sampler2D irradiance;  // unshadowed irradiance (stage 0), raw ratio (stage 2)
+layout(rgba32f, binding = LGH_IMAGE_FILTER_OUT) uniform writeonly image2D signalOut;
 uniform int stage;
 uniform int stepSize;
 uniform float normalPower;   // weight max(0, n.n')^normalPower
@@ -20,14 +22,13 @@ uniform float planeSigma;    // tangent-plane distance, in pixel footprints x st
 uniform float ratioSigma;    // ratio difference at weight e^-1/2 (from the second pass on: the first
                              // pass sees raw ratios, with k = 1 only 0 or 1, which would stop every tap)
 
-float luminanceOf(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = ivec2(frame.resolution.xy);
   if (any(greaterThanEqual(pixel, size))) return;
   if (stage == 0) {
-    float u = max(luminanceOf(texelFetch(irradiance, pixel, 0).rgb), 0.0);
+    float u = max(luminance(texelFetch(irradiance, pixel, 0).rgb), 0.0);
     float r = texelFetch(signalIn, pixel, 0).r;
     imageStore(signalOut, pixel, vec4(u * r, u, r, 1.0));
     return;

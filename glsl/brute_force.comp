@@ -4,6 +4,7 @@
 // it checks the light pass rather than repeating it. Adds into `irradianceOut`, so C++ can feed lights
 // one storage block at a time. With LGH_SHADOWED every light's contribution is multiplied by its
 // visibility (one shadow ray per light per pixel): the exact shadowed reference, for small images.
+#include "shared/bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
@@ -16,7 +17,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #endif
 
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight lights[]; };
-layout(rgba32f, binding = 0) uniform image2D irradianceOut;
+layout(rgba32f, binding = LGH_IMAGE_BRUTE_FORCE_IRRADIANCE) uniform image2D irradianceOut;
 uniform uint lightCount;
 uniform float clampDistance;
 

@@ -1,14 +1,15 @@
 #version 450 core
 // Final = emission + direct + indirect_unshadowed * visibility ratio, where the indirect radiance is
 // albedo / pi x the light pass's irradiance (albedo applied here, after interleaving and filtering).
+#include "shared/bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
-layout(binding = 4) uniform sampler2D directLight;
-layout(binding = 5) uniform sampler2D indirectIrradiance;  // LGH irradiance, unshadowed (black without GI)
-layout(binding = 6) uniform sampler2D visibilityRatio; // filtered shadow ratio (r), 1 without shadows
-layout(rgba32f, binding = 0) uniform writeonly image2D finalOut;
-layout(rgba32f, binding = 1) uniform writeonly image2D indirectOut;  // unshadowed indirect radiance (AOV)
+layout(binding = LGH_TEXTURE_COMPOSITE_DIRECT) uniform sampler2D directLight;
+layout(binding = LGH_TEXTURE_COMPOSITE_INDIRECT) uniform sampler2D indirectIrradiance;  // LGH irradiance, unshadowed (black without GI)
+layout(binding = LGH_TEXTURE_COMPOSITE_VISIBILITY) uniform sampler2D visibilityRatio; // filtered shadow ratio (r), 1 without shadows
+layout(rgba32f, binding = LGH_IMAGE_COMPOSITE_FINAL) uniform writeonly image2D finalOut;
+layout(rgba32f, binding = LGH_IMAGE_COMPOSITE_INDIRECT) uniform writeonly image2D indirectOut;  // unshadowed indirect radiance (AOV)
 layout(std430, binding = LGH_BINDING_PASS0) buffer Counters { uint nonFinitePixels; };
 
 // The optional inputs may be 1x1 stand-ins (black indirect, white visibility); texelFetch ignores wrap

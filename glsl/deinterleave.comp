@@ -2,12 +2,13 @@
 // Splits the G-buffer's position and normal into n x n tiles: pixel (x, y) goes to tile
 // (x mod n, y mod n) at (x div n, y div n) inside it. Each tile is a coarse image of the whole view,
 // so a light drawn into one tile shades every n-th pixel of the full image.
+#include "shared/bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
 
-layout(rgba32f, binding = 0) uniform writeonly image2D tiledPosition;
-layout(rgba16f, binding = 1) uniform writeonly image2D tiledNormal;
+layout(rgba32f, binding = LGH_IMAGE_TILED_POSITION) uniform writeonly image2D tiledPosition;
+layout(rgba16f, binding = LGH_IMAGE_TILED_NORMAL) uniform writeonly image2D tiledNormal;
 uniform uint tilesPerAxis;
 uniform uvec2 tileSize;
 

@@ -1,5 +1,6 @@
 #version 450 core
 // Direct light from punctual lights (the scene's, or all but its point lights): exact, one ray-traced shadow ray per light per pixel.
+#include "shared/bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
@@ -8,7 +9,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/punctual.glsl"
 
 layout(std430, binding = LGH_BINDING_PUNCTUAL_LIGHTS) readonly buffer PunctualLights { GpuPunctualLight lights[]; };
-layout(rgba32f, binding = 0) uniform image2D directOut;
+layout(rgba32f, binding = LGH_IMAGE_DIRECT) uniform image2D directOut;
 uniform uint firstLight;   // this dispatch shades lights [firstLight, firstLight + lightCount)
 uniform uint lightCount;
 uniform bool shadows;

@@ -1,12 +1,13 @@
 #version 450 core
 // A frame's image as display pixels, encoded as lgh-render encodes the same AOV for a PNG
 // (shared/display_encode.h): the target is RGBA8 and the image is read 1:1.
+#include "shared/bindings.h"
 #include "shared/display_encode.h"
 
 #ifdef LGH_DISPLAY_COUNTS
-layout(binding = 0) uniform usampler2D image;  // R32UI fragments per pixel
+layout(binding = LGH_TEXTURE_DISPLAY_IMAGE) uniform usampler2D image;  // R32UI fragments per pixel
 #else
-layout(binding = 0) uniform sampler2D image;
+layout(binding = LGH_TEXTURE_DISPLAY_IMAGE) uniform sampler2D image;
 #endif
 uniform uint encoding;      // kDisplayRadiance, kDisplayData, kDisplayRatio, kDisplayCounts
 uniform float exposureEV;   // radiance only

@@ -1,4 +1,5 @@
 #version 450 core
+#include "shared/bindings.h"
 #include "shared/frame.glsl"
 in vec3 worldPosition;
 in vec3 worldNormal;
@@ -8,8 +9,8 @@ layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outAlbedo;
 layout(location = 3) out vec4 outEmission;
 
-layout(binding = 0) uniform sampler2D baseColorTexture;  // white when the material has none
-layout(binding = 1) uniform sampler2D emissiveTexture;
+layout(binding = LGH_TEXTURE_MATERIAL_BASE_COLOR) uniform sampler2D baseColorTexture;  // white when the material has none
+layout(binding = LGH_TEXTURE_MATERIAL_EMISSIVE) uniform sampler2D emissiveTexture;
 uniform vec4 baseColorFactor;
 uniform vec3 emissionFactor;
 

@@ -6,7 +6,7 @@
 #include "shared/lgh_types.h"
 
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer GridLights { GpuGridLight lights[]; };
-layout(binding = 0) uniform sampler2D surfacePosition;  // xyz world position, w = 1 on geometry
+layout(binding = LGH_TEXTURE_SURFACE_POSITION) uniform sampler2D surfacePosition;  // xyz world position, w = 1 on geometry
 uniform mat4 viewProjection;
 uniform vec3 cameraPosition;
 uniform uint firstLight;  // the level's offset in the merged buffer

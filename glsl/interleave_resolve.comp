@@ -4,14 +4,15 @@
 // ends, n + 1 taps per axis, so each tile is counted exactly once and the window is symmetric),
 // weighted by how much each neighbour's surface looks like its own. Each tile's value was scaled by
 // n^2 in the light pass, so on a smooth surface the average is the sum over all tiles: all lights.
+#include "shared/bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
 
-layout(binding = 4) uniform sampler2D tiledIrradiance;          // rgb irradiance x n^2, a shaded fragments
-layout(binding = 5) uniform usampler2D tiledFragmentCounts;     // when countFragments != 0
-layout(rgba32f, binding = 0) uniform writeonly image2D irradianceOut;
-layout(r32ui, binding = 1) uniform writeonly uimage2D fragmentCountsOut;
+layout(binding = LGH_TEXTURE_TILED_IRRADIANCE) uniform sampler2D tiledIrradiance;          // rgb irradiance x n^2, a shaded fragments
+layout(binding = LGH_TEXTURE_TILED_FRAGMENT_COUNTS) uniform usampler2D tiledFragmentCounts;     // when countFragments != 0
+layout(rgba32f, binding = LGH_IMAGE_RESOLVED_IRRADIANCE) uniform writeonly image2D irradianceOut;
+layout(r32ui, binding = LGH_IMAGE_RESOLVED_FRAGMENT_COUNTS) uniform writeonly uimage2D fragmentCountsOut;
 uniform uint tilesPerAxis;
 uniform uvec2 tileSize;
 uniform int countFragments;

@@ -7,15 +7,8 @@ layout(local_size_x = 256) in;
 #include "shared/lgh_grid.glsl"
 
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight lights[]; };
-// [0..2] min lit, [3..5] max lit, [6..8] min all, [9..11] max all (ordered float bits),
-// [12] largest of lum(I) and I's channels (ordered bits), [13] lit count
-layout(std430, binding = LGH_BINDING_PASS3) buffer Result { uint result[]; };
+layout(std430, binding = LGH_BINDING_PASS3) buffer Result { LghBoundsResult result; };
 uniform uint lightCount;
-
-uint orderedBits(float f) {
-  uint u = floatBitsToUint(f);
-  return (u & 0x80000000u) != 0u ? ~u : (u | 0x80000000u);
-}
 
 shared vec3 litLo[256], litHi[256], allLo[256], allHi[256];
 shared float largest[256];
@@ -53,12 +46,12 @@ void main() {
   }
   if (t == 0u) {
     for (int axis = 0; axis < 3; ++axis) {
-      atomicMin(result[axis], orderedBits(litLo[0][axis]));
-      atomicMax(result[3 + axis], orderedBits(litHi[0][axis]));
-      atomicMin(result[6 + axis], orderedBits(allLo[0][axis]));
-      atomicMax(result[9 + axis], orderedBits(allHi[0][axis]));
+      atomicMin(result.litLower[axis], orderedBits(litLo[0][axis]));
+      atomicMax(result.litUpper[axis], orderedBits(litHi[0][axis]));
+      atomicMin(result.allLower[axis], orderedBits(allLo[0][axis]));
+      atomicMax(result.allUpper[axis], orderedBits(allHi[0][axis]));
     }
-    atomicMax(result[12], orderedBits(largest[0]));
-    atomicAdd(result[13], litCount[0]);
+    atomicMax(result.largestValue, orderedBits(largest[0]));
+    atomicAdd(result.litCount, litCount[0]);
   }
 }

@@ -7,6 +7,7 @@
 // reflects flux * rho as a cosine lobe: a VPL of peak intensity flux * rho / pi. The path continues in
 // a cosine-distributed direction, where the Lambertian BRDF times cosine over the pdf is exactly rho.
 layout(local_size_x = 64) in;
+#include "shared/color.glsl"
 #include "shared/dispatch.glsl"
 #include "shared/lgh_types.h"
 #include "shared/octahedral.h"
@@ -39,8 +40,6 @@ void emit(vec3 position, vec3 normal, vec3 intensity) {
   uint index = atomicAdd(outputCount, 1u);
   if (index < outputCapacity) outputLights[outputOffset + index] = GpuLight(position, octEncode(normal), intensity, kLightOriented);
 }
-
-float luminanceOf(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
 // A point on an emissive triangle, its front-face normal and its radiance there (emissive texture included).
 void sampleEmissiveTriangle(GpuEmitter e, inout Rng rng, out vec3 position, out vec3 normal, out vec3 radiance) {
@@ -102,7 +101,7 @@ void main() {
     if (!traceClosestHit(origin, direction, 0.0, uintBitsToFloat(0x7f800000u), hit)) break;
     HitSurface s = hitSurface(origin, direction, hit);
     flux *= s.albedo;  // the flux the surface reflects
-    if (!(luminanceOf(flux) > 0.0)) break;
+    if (!(luminance(flux) > 0.0)) break;
     emit(s.position, s.normal, flux * (1.0 / kPi));
     origin = offsetRayOrigin(s.position, s.normal);
     direction = sampleCosineHemisphere(vec2(nextFloat(rng), nextFloat(rng)), s.normal);

@@ -5,11 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "lgh/light.h"
 #include "render/image_io.h"
 
 namespace lgh {
 
-inline double luminance(const glm::vec4& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+inline double luminance(const glm::vec4& c) { return luminance(glm::dvec3(c)); }
 
 // sqrt(sum (a - b)^2 / sum b^2) over the pixels' luminance; b is the reference.
 inline double relativeRmse(const ImageRGBA& a, const ImageRGBA& reference) {

@@ -52,7 +52,7 @@ struct LightPassSettings {
 // Indirect shadows: the light pass's selection of k lights per pixel and the shadow rays to them.
 struct ShadowSettings {
   int samples = 4;          // k shadow rays per pixel; 0: indirect light unshadowed
-  bool skipFinest = true;   // the finest level blended (S1) is not picked for shadow rays
+  bool skipFinest = true;   // the finest level blended (S1, or S0 from start level 0) is not picked
   bool uniform = false;     // pick lights uniformly instead of by contribution (for comparison)
   float spread = 1.0f;      // jitter of a cluster's shadow-ray target, in its standard deviations
 };
@@ -110,7 +110,7 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(pass.bruteForce, SettingInfo{"brute-force", "shade every input light at every pixel with weight 1 (exact unshadowed sum; slow)"});
   auto& shadows = s.shadows;
   visit(shadows.samples, SettingInfo{"shadow-samples", "k: shadow rays per pixel for indirect light (0 = unshadowed)", 0, gpu::kMaxShadowSamples});
-  visit(shadows.skipFinest, SettingInfo{"shadow-skip-finest", "do not pick lights of the finest level blended (S1) for shadow rays"});
+  visit(shadows.skipFinest, SettingInfo{"shadow-skip-finest", "do not pick lights of the finest level blended (S1, or S0 with start-level 0) for shadow rays"});
   visit(shadows.uniform, SettingInfo{"shadow-uniform", "pick shadow lights uniformly instead of by contribution"});
   visit(shadows.spread, SettingInfo{"shadow-spread", "jitter of a cluster's shadow-ray target, in its standard deviations", 0, 16});
   auto& filter = s.filter;

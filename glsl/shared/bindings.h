@@ -22,6 +22,40 @@
 #define LGH_BINDING_PASS6 14
 #define LGH_BINDING_PASS7 15
 
+// Texture units. A pass that reads the G-buffer (shared/gbuffer.glsl) has it on units 0-3; the
+// light pass reads its surfaces (the G-buffer or its interleaved tiles) on the same first two.
+#define LGH_TEXTURE_GBUFFER_POSITION 0
+#define LGH_TEXTURE_GBUFFER_NORMAL 1
+#define LGH_TEXTURE_GBUFFER_ALBEDO 2
+#define LGH_TEXTURE_GBUFFER_EMISSION 3
+#define LGH_TEXTURE_SURFACE_POSITION 0
+#define LGH_TEXTURE_SURFACE_NORMAL 1
+// G-buffer pass: the material's textures while drawing.
+#define LGH_TEXTURE_MATERIAL_BASE_COLOR 0
+#define LGH_TEXTURE_MATERIAL_EMISSIVE 1
+// Passes that also read the G-buffer take their own inputs from unit 4 on.
+#define LGH_TEXTURE_TILED_IRRADIANCE 4       // interleave resolve
+#define LGH_TEXTURE_TILED_FRAGMENT_COUNTS 5  // interleave resolve
+#define LGH_TEXTURE_FILTER_SIGNAL 4          // a-trous: the signal being filtered
+#define LGH_TEXTURE_FILTER_SECOND 5          // a-trous: unshadowed irradiance, or the raw ratio
+#define LGH_TEXTURE_COMPOSITE_DIRECT 4
+#define LGH_TEXTURE_COMPOSITE_INDIRECT 5
+#define LGH_TEXTURE_COMPOSITE_VISIBILITY 6
+#define LGH_TEXTURE_DISPLAY_IMAGE 0
+
+// Image units, per pass.
+#define LGH_IMAGE_TILED_POSITION 0           // interleave split
+#define LGH_IMAGE_TILED_NORMAL 1             // interleave split
+#define LGH_IMAGE_RESOLVED_IRRADIANCE 0      // interleave resolve
+#define LGH_IMAGE_RESOLVED_FRAGMENT_COUNTS 1 // interleave resolve
+#define LGH_IMAGE_FRAGMENT_COUNTS 0          // light pass (overdraw)
+#define LGH_IMAGE_DIRECT 0                   // direct light
+#define LGH_IMAGE_BRUTE_FORCE_IRRADIANCE 0   // compute brute force
+#define LGH_IMAGE_SHADOW_RATIO 0             // shadow rays
+#define LGH_IMAGE_FILTER_OUT 0               // a-trous
+#define LGH_IMAGE_COMPOSITE_FINAL 0
+#define LGH_IMAGE_COMPOSITE_INDIRECT 1
+
 // Uniform blocks.
 #define LGH_UBO_FRAME 0
 #define LGH_UBO_PASS 1

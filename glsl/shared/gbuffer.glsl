@@ -2,10 +2,10 @@
 // reads the G-buffer binds it the same way (GBuffer::bindForReading).
 #ifndef LGH_GBUFFER_GLSL
 #define LGH_GBUFFER_GLSL
-layout(binding = 0) uniform sampler2D gPosition;  // xyz world position, w = 1 on geometry, 0 on background
-layout(binding = 1) uniform sampler2D gNormal;    // xyz unit shading normal facing the camera
-layout(binding = 2) uniform sampler2D gAlbedo;    // rgb linear diffuse albedo
-layout(binding = 3) uniform sampler2D gEmission;  // rgb emitted radiance
+layout(binding = LGH_TEXTURE_GBUFFER_POSITION) uniform sampler2D gPosition;  // xyz world position, w = 1 on geometry, 0 on background
+layout(binding = LGH_TEXTURE_GBUFFER_NORMAL) uniform sampler2D gNormal;    // xyz unit shading normal facing the camera
+layout(binding = LGH_TEXTURE_GBUFFER_ALBEDO) uniform sampler2D gAlbedo;    // rgb linear diffuse albedo
+layout(binding = LGH_TEXTURE_GBUFFER_EMISSION) uniform sampler2D gEmission;  // rgb emitted radiance
 
 struct Surface {
   vec3 position;

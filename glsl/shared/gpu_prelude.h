@@ -35,7 +35,9 @@ using glm::max;
 using glm::min;
 using glm::pow;
 using glm::floatBitsToInt;
+using glm::floatBitsToUint;
 using glm::intBitsToFloat;
+using glm::uintBitsToFloat;
 }  // namespace lgh::gpu
 #define GPU_NAMESPACE_BEGIN namespace lgh::gpu {
 #define GPU_NAMESPACE_END }

@@ -8,6 +8,7 @@
 #ifndef LGH_LGH_GRID_GLSL
 #define LGH_LGH_GRID_GLSL
 #include "shared/bindings.h"
+#include "shared/color.glsl"
 #include "shared/lgh_types.h"
 
 layout(std140, binding = LGH_UBO_PASS) uniform GridParamsBlock { LghGridParams grid; };
@@ -51,8 +52,6 @@ uint hashKey(uint k) {  // murmur3's finaliser: neighbouring vertices land far a
   k ^= k >> 16u;
   return k;
 }
-
-float luminance(vec3 rgb) { return dot(rgb, vec3(0.2126, 0.7152, 0.0722)); }
 
 // Declares `bool name##Insert(uint key)` (ordered insertion into keys[]; counts new keys in
 // counter[0], sets counter[1] on overflow) and `uint name##Find(uint key)` (slot or kEmptyKey), for

@@ -36,6 +36,30 @@ GPU_STRUCT(GpuGridLight) {
 GPU_CHECK_SIZE(GpuGridLight, 64);
 GPU_CHECK_OFFSET(GpuGridLight, meanNormal, 48);
 
+// The bounds reduction's result (lgh_bounds.comp): bounds of the lit lights and of all lights (the
+// fallback when none is lit), the largest of lum(I) and I's channels (sets the S1 scatter's fixed-point
+// scale) and the number of lit lights. Floats are stored as orderedBits() so that uint atomicMin and
+// atomicMax order them as floats.
+GPU_STRUCT(LghBoundsResult) {
+  uint litLower[4];  // [0..2] used
+  uint litUpper[4];
+  uint allLower[4];
+  uint allUpper[4];
+  uint largestValue;
+  uint litCount;
+  uint pad0, pad1;
+};
+GPU_CHECK_SIZE(LghBoundsResult, 80);
+
+// A float's bits mapped so that unsigned order is float order (negatives reversed below positives).
+GPU_FUNC uint orderedBits(float f) {
+  uint u = floatBitsToUint(f);
+  return (u & 0x80000000u) != 0u ? ~u : (u | 0x80000000u);
+}
+GPU_FUNC float fromOrderedBits(uint u) {
+  return uintBitsToFloat((u & 0x80000000u) != 0u ? (u & 0x7fffffffu) : ~u);
+}
+
 // Grid geometry and the fixed-point scale of one build (uniform block for the build kernels).
 GPU_STRUCT(LghGridParams) {
   vec4 originAndTopCell;   // xyz: min corner of the top cell, w: H

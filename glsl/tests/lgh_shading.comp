@@ -4,14 +4,8 @@ layout(local_size_x = 64) in;
 #include "shared/dispatch.glsl"
 #include "shared/bindings.h"
 #include "shared/lgh_shading.glsl"
+#include "tests/test_types.h"
 
-struct ShadingCase {
-  vec4 lightPosOmni;     // xyz light position, w omni fraction
-  vec4 intensityClamp;   // rgb intensity, w clamp distance
-  vec4 meanNormalD;      // xyz mean normal, w distance for the blend test
-  vec4 pointRadius;      // xyz shading point, w blend radius R
-  vec4 normalRole;       // xyz shading normal, w role
-};
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Cases { ShadingCase cases[]; };
 layout(std430, binding = LGH_BINDING_PASS1) writeonly buffer Results { vec4 results[]; };  // rgb contribution, a blend
 

@@ -3,9 +3,8 @@
 layout(local_size_x = 64) in;
 #include "shared/dispatch.glsl"
 #include "shared/bvh_traverse.glsl"
+#include "tests/test_types.h"
 
-struct TestRay { vec4 originTMin; vec4 directionTMax; };
-struct TestHit { float t; uint sceneTriangle; uint anyHit; uint pad; };
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Rays { TestRay rays[]; };
 layout(std430, binding = LGH_BINDING_PASS1) writeonly buffer Hits { TestHit hits[]; };
 

@@ -29,7 +29,7 @@ void BruteForcePass::execute(const GBuffer& gbuffer, const gl::Buffer& lights, s
   if (shadowedIn) shadowedIn->bindForCompute();
   irradiance.clear(glm::vec4(0.0f));
   gbuffer.bindForReading();
-  irradiance.bindImage(0, GL_READ_WRITE);
+  irradiance.bindImage(LGH_IMAGE_BRUTE_FORCE_IRRADIANCE, GL_READ_WRITE);
   program.set("clampDistance", clampDistance);
   // One storage block at a time; the shader adds each chunk's sum into the image.
   // Shadowed, every light's BVH traversal counts against the limit too (up to ~1,000 iterations).

@@ -18,11 +18,11 @@ unsigned CompositePass::execute(const GBuffer& gbuffer, const gl::Texture2D& dir
                                 const gl::Texture2D* indirectIrradiance, const gl::Texture2D* visibility,
                                 gl::Texture2D& indirectOut, gl::Texture2D& out) {
   gbuffer.bindForReading();
-  direct.bindTexture(4);
-  (indirectIrradiance ? *indirectIrradiance : black_).bindTexture(5);
-  (visibility ? *visibility : white_).bindTexture(6);
-  out.bindImage(0, GL_WRITE_ONLY);
-  indirectOut.bindImage(1, GL_WRITE_ONLY);
+  direct.bindTexture(LGH_TEXTURE_COMPOSITE_DIRECT);
+  (indirectIrradiance ? *indirectIrradiance : black_).bindTexture(LGH_TEXTURE_COMPOSITE_INDIRECT);
+  (visibility ? *visibility : white_).bindTexture(LGH_TEXTURE_COMPOSITE_VISIBILITY);
+  out.bindImage(LGH_IMAGE_COMPOSITE_FINAL, GL_WRITE_ONLY);
+  indirectOut.bindImage(LGH_IMAGE_COMPOSITE_INDIRECT, GL_WRITE_ONLY);
   counter_.clear();
   counter_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});

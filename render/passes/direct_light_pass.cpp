@@ -31,7 +31,7 @@ void DirectLightPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, boo
     lightCount = nonPointLightCount_;
   }
   gbuffer.bindForReading();
-  out.bindImage(0, GL_READ_WRITE);
+  out.bindImage(LGH_IMAGE_DIRECT, GL_READ_WRITE);
   program_.set("shadows", int(shadows));
   // A few lights per dispatch: llvmpipe ends an invocation's loops after 65,535 iterations in all,
   // and every light's shadow ray walks the BVH (hundreds of iterations in Sponza).

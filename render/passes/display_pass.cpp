@@ -5,6 +5,7 @@
 #include <string>
 
 #include "render/gl/debug.h"
+#include "shared/bindings.h"
 #include "shared/display_encode.h"
 
 namespace lgh {
@@ -53,7 +54,7 @@ void DisplayPass::execute(const gl::Texture2D& image, const DisplayOptions& opti
   program.set("exposureEV", options.exposureEV);
   program.set("toneCurve", unsigned(options.toneMap));
   program.set("largestCount", float(std::max(options.largestCount, 1u)));
-  image.bindTexture(0);
+  image.bindTexture(LGH_TEXTURE_DISPLAY_IMAGE);
   out.framebuffer.bind();
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);

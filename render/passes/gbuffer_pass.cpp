@@ -1,6 +1,7 @@
 #include "render/passes/gbuffer_pass.h"
 
 #include "render/gl/debug.h"
+#include "shared/bindings.h"
 
 namespace lgh {
 
@@ -15,10 +16,10 @@ GBuffer::GBuffer(int w, int h)
       framebuffer({&position, &normal, &albedo, &emission}, &depth) {}
 
 void GBuffer::bindForReading() const {
-  position.bindTexture(0);
-  normal.bindTexture(1);
-  albedo.bindTexture(2);
-  emission.bindTexture(3);
+  position.bindTexture(LGH_TEXTURE_GBUFFER_POSITION);
+  normal.bindTexture(LGH_TEXTURE_GBUFFER_NORMAL);
+  albedo.bindTexture(LGH_TEXTURE_GBUFFER_ALBEDO);
+  emission.bindTexture(LGH_TEXTURE_GBUFFER_EMISSION);
 }
 
 GBufferPass::GBufferPass() : program_(gl::Program::graphics("gbuffer.vert", "gbuffer.frag")) {}
@@ -36,8 +37,8 @@ void GBufferPass::execute(const SceneGpu& scene, GBuffer& out) const {
   scene.drawByMaterial([&](std::uint32_t, const gpu::GpuMaterial& m) {
     program_.set("baseColorFactor", m.baseColorFactor);
     program_.set("emissionFactor", m.emission);
-    scene.texture(m.baseColorTexture).bindTexture(0);
-    scene.texture(m.emissiveTexture).bindTexture(1);
+    scene.texture(m.baseColorTexture).bindTexture(LGH_TEXTURE_MATERIAL_BASE_COLOR);
+    scene.texture(m.emissiveTexture).bindTexture(LGH_TEXTURE_MATERIAL_EMISSIVE);
   });
   glDisable(GL_DEPTH_TEST);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -22,7 +22,7 @@ size_t GridPointsPass::execute(const GpuHierarchy& hierarchy, int level, const C
   if (range.count == 0) return 0;
   gl::DebugGroup group("grid points");
   hierarchy.gridLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
-  position.bindTexture(0);
+  position.bindTexture(LGH_TEXTURE_SURFACE_POSITION);
   program_.set("viewProjection", view.viewProjection());
   program_.set("cameraPosition", view.position);
   program_.set("firstLight", unsigned(range.offset));

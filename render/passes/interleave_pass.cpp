@@ -4,12 +4,15 @@
 #include <string>
 
 #include "render/gl/debug.h"
+#include "shared/bindings.h"
+#include "shared/light_pass_types.h"
 
 namespace lgh {
 
 TileLayout TileLayout::of(int tilesPerAxis, int width, int height) {
-  if (tilesPerAxis < 1 || tilesPerAxis > 8)
-    throw std::invalid_argument("interleave: " + std::to_string(tilesPerAxis) + " tiles per axis (use 1 to 8)");
+  if (tilesPerAxis < 1 || tilesPerAxis > int(gpu::kMaxInterleave))
+    throw std::invalid_argument("interleave: " + std::to_string(tilesPerAxis) + " tiles per axis (use 1 to " +
+                                std::to_string(gpu::kMaxInterleave) + ")");
   TileLayout t;
   t.tilesPerAxis = tilesPerAxis;
   t.imageSize = {width, height};
@@ -30,8 +33,8 @@ InterleavePass::InterleavePass()
 void InterleavePass::split(const GBuffer& gbuffer, Tiles& tiles) const {
   const TileLayout& l = tiles.layout;
   gbuffer.bindForReading();
-  tiles.position.bindImage(0, GL_WRITE_ONLY);
-  tiles.normal.bindImage(1, GL_WRITE_ONLY);
+  tiles.position.bindImage(LGH_IMAGE_TILED_POSITION, GL_WRITE_ONLY);
+  tiles.normal.bindImage(LGH_IMAGE_TILED_NORMAL, GL_WRITE_ONLY);
   split_.set("tilesPerAxis", unsigned(l.tilesPerAxis));
   split_.set("tileSize", glm::uvec2(l.tileSize));
   split_.dispatch2D(l.targetSize().x, l.targetSize().y, {8, 8});
@@ -43,10 +46,10 @@ void InterleavePass::resolve(const GBuffer& gbuffer, const Tiles& tiles, const I
                              bool countFragments, gl::Texture2D& irradiance, gl::Texture2D& fragmentCounts) const {
   const TileLayout& l = tiles.layout;
   gbuffer.bindForReading();
-  tiles.irradiance.bindTexture(4);
-  tiles.fragmentCounts.bindTexture(5);
-  irradiance.bindImage(0, GL_WRITE_ONLY);
-  fragmentCounts.bindImage(1, GL_WRITE_ONLY);
+  tiles.irradiance.bindTexture(LGH_TEXTURE_TILED_IRRADIANCE);
+  tiles.fragmentCounts.bindTexture(LGH_TEXTURE_TILED_FRAGMENT_COUNTS);
+  irradiance.bindImage(LGH_IMAGE_RESOLVED_IRRADIANCE, GL_WRITE_ONLY);
+  fragmentCounts.bindImage(LGH_IMAGE_RESOLVED_FRAGMENT_COUNTS, GL_WRITE_ONLY);
   resolve_.set("tilesPerAxis", unsigned(l.tilesPerAxis));
   resolve_.set("tileSize", glm::uvec2(l.tileSize));
   resolve_.set("countFragments", int(countFragments));

@@ -30,14 +30,6 @@ size_t denseVertexCount(const GridGeometry& grid, int level) {
   return n * n * n;
 }
 
-// Inverse of the ordered-bits mapping in lgh_bounds.comp.
-float fromOrderedBits(GLuint u) {
-  const GLuint bits = (u & 0x80000000u) ? (u & 0x7fffffffu) : ~u;
-  float f;
-  std::memcpy(&f, &bits, sizeof f);
-  return f;
-}
-
 std::string mib(size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
 
 }  // namespace
@@ -59,7 +51,7 @@ LghBuildPass::LghBuildPass(bool floatAtomicsAvailable)
       gather_(gl::Program::compute("lgh_gather.comp")),
       gridParams_(sizeof(gpu::LghGridParams)),
       counters_(4 * sizeof(GLuint)),
-      boundsResult_(16 * sizeof(GLuint)) {
+      boundsResult_(sizeof(gpu::LghBoundsResult)) {
   if (floatAtomicsAvailable_) {
     scatterFloat_ = gl::Program::compute("lgh_scatter.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
     finalizeFloat_ = gl::Program::compute("lgh_finalize.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
@@ -93,10 +85,10 @@ void LghBuildPass::setGridParams(const GridGeometry& grid, int level, size_t cap
 }
 
 LghBuildPass::Bounds LghBuildPass::computeBounds(const gl::Buffer& lights, size_t lightCount) {
-  // Start values: min slots at the ordered bits of +inf's neighbour (0xffffffff), max slots at 0.
-  GLuint init[16] = {};
-  for (int i : {0, 1, 2, 6, 7, 8}) init[i] = 0xffffffffu;
-  boundsResult_.update(init, sizeof init);
+  // Start values: lower bounds at the largest ordered bits (0xffffffff), upper bounds and counts at 0.
+  gpu::LghBoundsResult init{};
+  for (int a = 0; a < 3; ++a) init.litLower[a] = init.allLower[a] = 0xffffffffu;
+  boundsResult_.update(&init, sizeof init);
   boundsResult_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
   forEachLightChunk(lights, lightCount, [&](size_t, size_t count) {
     bounds_.set("lightCount", GLuint(count));
@@ -104,15 +96,15 @@ LghBuildPass::Bounds LghBuildPass::computeBounds(const gl::Buffer& lights, size_
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   });
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  const auto r = boundsResult_.download<GLuint>(16);
+  const gpu::LghBoundsResult r = boundsResult_.download<gpu::LghBoundsResult>(1)[0];
   Bounds b;
-  b.litCount = r[13];
-  const int base = b.litCount > 0 ? 0 : 6;  // no lit light: fall back to all lights, as lgh::makeGrid does
+  b.litCount = r.litCount;
+  const bool lit = b.litCount > 0;  // no lit light: fall back to all lights, as lgh::makeGrid does
   for (int a = 0; a < 3; ++a) {
-    b.lower[a] = fromOrderedBits(r[size_t(base + a)]);
-    b.upper[a] = fromOrderedBits(r[size_t(base + 3 + a)]);
+    b.lower[a] = gpu::fromOrderedBits(lit ? r.litLower[a] : r.allLower[a]);
+    b.upper[a] = gpu::fromOrderedBits(lit ? r.litUpper[a] : r.allUpper[a]);
   }
-  b.largestValue = fromOrderedBits(r[12]);
+  b.largestValue = gpu::fromOrderedBits(r.largestValue);
   return b;
 }
 

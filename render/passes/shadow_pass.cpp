@@ -49,9 +49,9 @@ void ShadowFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& rawR
   program_.set("planeSigma", std::max(options.planeSigma, 1e-6f));
   program_.set("ratioSigma", std::max(options.ratioSigma, 1e-6f));
   auto run = [&](int stage, const gl::Texture2D& in, const gl::Texture2D& second, gl::Texture2D& out, int step) {
-    in.bindTexture(4);
-    second.bindTexture(5);
-    out.bindImage(0, GL_WRITE_ONLY);
+    in.bindTexture(LGH_TEXTURE_FILTER_SIGNAL);
+    second.bindTexture(LGH_TEXTURE_FILTER_SECOND);
+    out.bindImage(LGH_IMAGE_FILTER_OUT, GL_WRITE_ONLY);
     program_.set("stage", stage);
     program_.set("stepSize", step);
     program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});

@@ -17,6 +17,7 @@
 #include "render/scene/scene.h"
 #include "shared/bindings.h"
 #include "shared/ray_triangle.h"
+#include "tests/test_types.h"
 
 namespace lgh::test {
 namespace {
@@ -25,14 +26,8 @@ constexpr float kEdgeEpsilon = 1e-4f;
 constexpr float kTieEpsilon = 1e-4f;
 constexpr float kSameTriangleTEpsilon = 1e-5f;
 
-struct TestRay {
-  glm::vec4 originTMin, directionTMax;
-};
-struct TestHit {
-  float t;
-  std::uint32_t sceneTriangle, anyHit, pad;
-};
-static_assert(sizeof(TestHit) == 16);
+using gpu::TestHit;
+using gpu::TestRay;
 
 struct Mesh {
   std::vector<glm::vec3> positions;

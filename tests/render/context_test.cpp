@@ -5,6 +5,7 @@
 #include "gl_test_env.h"
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
+#include "shared/bindings.h"
 
 namespace lgh::test {
 namespace {
@@ -17,7 +18,7 @@ void expectScaleKernelWorks(size_t n) {
   gl::Program program = gl::Program::compute("tests/scale_buffer.comp");
   program.set("factor", 2.0f);
   program.set("count", unsigned(n));
-  buffer.bindBase(GL_SHADER_STORAGE_BUFFER, 0);
+  buffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   program.dispatch1D(n, 64);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   const std::vector<float> out = buffer.downloadAll<float>();

@@ -8,13 +8,12 @@
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
 #include "shared/bindings.h"
+#include "tests/test_types.h"
 
 namespace lgh::test {
 namespace {
 
-struct ShadingCase {
-  glm::vec4 lightPosOmni, intensityClamp, meanNormalD, pointRadius, normalRole;
-};
+using gpu::ShadingCase;
 
 class LghShadingTest : public GLTest {};
 
