@@ -9,11 +9,11 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 
-#include <nlohmann/json.hpp>
-
+#include "bench/bench_setup.h"
 #include "bench/light_source.h"
 #include "bench/stats.h"
 #include "bench/table.h"
@@ -446,16 +446,13 @@ CLI::App* addBuildCommand(CLI::App& app, BuildBenchOptions& options) {
       ->transform(CLI::AsNumberWithUnit(thousands))
       ->check([](const std::string& value) { return value == "0" ? std::string("must be at least 1") : std::string(); })
       ->capture_default_str();
-  command->add_option("--backend", options.backend, "OpenGL context: auto, egl, egl-device, egl-surfaceless, osmesa")
-      ->capture_default_str();
+  addBackendOption(*command, options.backend);
   command->add_option("--seed", options.seed, "seed of the light sets")->capture_default_str();
   return command;
 }
 
 int runBuildBench(const BuildBenchOptions& options) {
-  // Cheap failures first: a bad backend name or an unwritable output fails before minutes of work.
-  gl::ContextOptions contextOptions;
-  contextOptions.backend = gl::parseBackend(options.backend);
+  // Cheap failures first: an unwritable output fails before minutes of work (a bad backend, in parsing).
   std::optional<std::ofstream> csv, json;
   if (!options.csvPath.empty()) csv = openOutput(options.csvPath);
   if (!options.jsonPath.empty()) json = openOutput(options.jsonPath);
@@ -465,7 +462,7 @@ int runBuildBench(const BuildBenchOptions& options) {
   counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
   counts.erase(std::remove(counts.begin(), counts.end(), size_t(0)), counts.end());
 
-  const auto context = gl::Context::create(contextOptions);
+  const auto context = createContext(options.backend);
   const auto [source, sourceReason] = chooseLightSource(options);
   LghBuildPass pass(context->hasExtension("GL_NV_shader_atomic_float"));
 

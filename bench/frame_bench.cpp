@@ -6,68 +6,40 @@
 #include <fstream>
 #include <map>
 
-#include "bench/light_source.h"
+#include "bench/bench_setup.h"
 #include "bench/stats.h"
 #include "bench/table.h"
-#include "render/gl/context.h"
 #include "render/renderer.h"
-#include "render/scene/scene_gpu.h"
 
 namespace lgh::bench {
 namespace {
 
 // The frame's passes in order; the paper's Table 3 names in brackets where they differ.
-const std::vector<std::string> kPasses{"G-buffer",    "direct light",       "input lights", "LGH build",
-                                       "interleave split", "light pass", "interleave resolve", "shadow rays",
-                                       "shadow filter", "composite"};
+const std::vector<std::string> kPasses{passes::kGBuffer,           passes::kDirectLight,     passes::kInputLights,
+                                       passes::kLghBuild,          passes::kInterleaveSplit, passes::kLightPass,
+                                       passes::kInterleaveResolve, passes::kShadowRays,      passes::kShadowFilter,
+                                       passes::kComposite};
 
 }  // namespace
 
 CLI::App* addFrameCommand(CLI::App& app, FrameBenchOptions& options) {
   CLI::App* command = app.add_subcommand("frame", "time a whole frame pass by pass for interleaving 1/2/4 (paper Table 3)");
-  command->add_option("--scene", options.scene, "glTF scene (default: ../shared/scenes/sponza_sun, else data/cornell_box)")
-      ->check(CLI::ExistingFile);
-  command->add_option("--camera", options.camera, "scene camera by name (default: the first)");
-  command->add_option("--width", options.width, "image width")->check(CLI::Range(16, 8192))->capture_default_str();
-  command->add_option("--height", options.height, "image height")->check(CLI::Range(16, 8192))->capture_default_str();
-  command->add_option("--vpls", options.vpls, "VPL budget")->check(CLI::Range(0, 16000000))->capture_default_str();
-  command->add_option("--bounces", options.bounces, "bounces per light path")->check(CLI::Range(1, 3))->capture_default_str();
-  command->add_option("--shadow-samples", options.shadowSamples, "k")->check(CLI::Range(0, 16))->capture_default_str();
-  command->add_option("--alpha", options.alpha, "LGH alpha")->check(CLI::Range(0.25, 16.0))->capture_default_str();
+  options.render.settings.inputLights.bounces = 1;  // the bench's default (FrameBenchOptions)
+  addRenderBenchOptions(*command, options.render, kFrameOwnSettings);
   command->add_option("--interleave", options.interleave, "interleaving factors, comma-separated")
       ->delimiter(',')
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
   command->add_option("--repeats", options.repeats, "timed frames per setting")->check(CLI::PositiveNumber)->capture_default_str();
   command->add_option("--csv", options.csvPath, "also write the per-pass medians as CSV");
-  command->add_option("--backend", options.backend, "OpenGL context")->capture_default_str();
   return command;
 }
 
 int runFrameBench(const FrameBenchOptions& options) {
-  gl::ContextOptions contextOptions;
-  contextOptions.backend = gl::parseBackend(options.backend);
-  std::string why;
-  const std::filesystem::path path = chooseRenderScene(options.scene, why);
-  const Scene scene = loadScene(path);
-  const auto context = gl::Context::create(contextOptions);
-  const SceneGpu sceneGpu(scene);
-  RenderSettings settings;
-  settings.image.width = options.width;
-  settings.image.height = options.height;
-  settings.image.camera = options.camera;
-  settings.inputLights.vpls = options.vpls;
-  settings.inputLights.bounces = options.bounces;
-  settings.shadows.samples = options.shadowSamples;
-  settings.lightPass.alpha = options.alpha;
-  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
-  Renderer renderer(sceneGpu, settings);
+  RenderBench bench(options.render);
+  RenderSettings settings = options.render.settings;
+  bench.renderer().renderToVplTarget(settings, size_t(settings.inputLights.vpls));
   int exitCode = 0;
-  {
-    // Paths that leave the scene deposit nothing: scale the budget so the VPL count meets --vpls.
-    const size_t got = renderer.render(view).lights.vpls, target = size_t(options.vpls);
-    if (got > 0 && got < target * 98 / 100) settings.inputLights.vpls = int(std::min(double(target) * double(target) / double(got), 16e6));
-  }
 
   std::map<int, std::map<std::string, std::vector<double>>> times;  // [n][pass] -> samples
   std::map<int, std::vector<double>> totals;
@@ -77,15 +49,13 @@ int runFrameBench(const FrameBenchOptions& options) {
     RenderSettings s = settings;
     s.lightPass.interleave = n;
     s.lightPass.overdraw = true;
-    renderer.setSettings(s);
-    const FrameStats counted = renderer.render(view);  // warm-up, with the fragment counter
+    const FrameStats counted = bench.renderer().render(s);  // warm-up, with the fragment counter
     fragments[n] = counted.lights.rasterizedPerPixel;
     lights = counted.lights;
     s.lightPass.overdraw = false;
     for (int r = 0; r < options.repeats; ++r) {
       s.inputLights.seed = settings.inputLights.seed + 1 + r;  // new VPLs every frame, as with moving lights: every pass runs
-      renderer.setSettings(s);
-      const FrameStats stats = renderer.render(view);
+      const FrameStats stats = bench.renderer().render(s);
       if (stats.nonFinitePixels > 0) exitCode = 1;
       for (const std::string& pass : kPasses) times[n][pass].push_back(stats.passMs(pass));
       totals[n].push_back(stats.totalMs());
@@ -93,16 +63,17 @@ int runFrameBench(const FrameBenchOptions& options) {
     std::fprintf(stderr, "  %dx%d done\n", n, n);
   }
 
-  size_t gridLights = 0;
-  for (size_t l = 1; l < lights.lightsPerLevel.size(); ++l) gridLights += lights.lightsPerLevel[l];
-  std::printf("lgh-bench frame: %s (%s), %d x %d, %s\n", path.filename().string().c_str(), why.c_str(), options.width,
-              options.height, context->description().c_str());
-  std::printf("%s VPLs (%d bounce%s), L = %d, %s grid lights, alpha %.3g, k = %d (%s shadow rays per frame); "
-              "median of %d frames, glFinish-bracketed ms\n\n",
-              formatCount(lights.vpls).c_str(), options.bounces, options.bounces == 1 ? "" : "s", lights.levels,
-              formatCount(gridLights).c_str(), double(options.alpha), options.shadowSamples,
-              formatCount(size_t(options.width) * size_t(options.height) * size_t(options.shadowSamples)).c_str(),
-              options.repeats);
+  const size_t gridLights = gridLightsOf(lights);
+  const int width = settings.image.width, height = settings.image.height;
+  const int bounces = settings.inputLights.bounces, k = settings.shadows.samples;
+  std::printf("lgh-bench frame: %s (%s), %d x %d, %s\n", bench.scenePath().filename().string().c_str(),
+              bench.sceneReason().c_str(), width, height, bench.context().description().c_str());
+  std::printf(
+      "%s VPLs (%d bounce%s), L = %d, %s grid lights, alpha %.3g, k = %d (%s shadow rays per frame); "
+      "median of %d frames, glFinish-bracketed ms\n\n",
+      formatCount(lights.vpls).c_str(), bounces, bounces == 1 ? "" : "s", lights.levels,
+      formatCount(gridLights).c_str(), double(settings.lightPass.alpha), k,
+      formatCount(size_t(width) * size_t(height) * size_t(k)).c_str(), options.repeats);
   std::vector<std::string> headers{"pass"};
   for (int n : options.interleave) headers.push_back(std::to_string(n) + "x" + std::to_string(n));
   TextTable table(headers);

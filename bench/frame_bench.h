@@ -3,26 +3,28 @@
 // build, light pass, shadow rays, filter, composite) for interleaving 1x1, 2x2 and 4x4, measured in
 // one run, with the device-independent counts beside the times.
 
+#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
+#include "bench/bench_setup.h"
 
 namespace lgh::bench {
 
 struct FrameBenchOptions {
-  std::string scene;  // empty: ../shared/scenes/sponza_sun if present, else the project's Cornell box
-  std::string camera;
-  int width = 640, height = 360;
-  int vpls = 100000;
-  int bounces = 1;
-  int shadowSamples = 4;
-  float alpha = 1.0f;
+  // --scene, --backend and the render settings (--width, --vpls, --shadow-samples, ...: render/settings.h)
+  // but the bench's own (kFrameOwnSettings). --vpls is the VPL count to reach: the budget is raised
+  // until the VPLs made meet it. Its default where it differs from RenderSettings' (set by
+  // addFrameCommand): one bounce.
+  RenderBenchOptions render;
   std::vector<int> interleave{1, 2, 4};
   int repeats = 3;
   std::string csvPath;
-  std::string backend = "auto";
 };
+
+// Settings the bench sets itself: the interleaving factors (a list, --interleave), and the overdraw
+// counter it switches on for its warm-up frames.
+inline const std::vector<std::string> kFrameOwnSettings{"interleave", "overdraw"};
 
 CLI::App* addFrameCommand(CLI::App& app, FrameBenchOptions& options);
 int runFrameBench(const FrameBenchOptions& options);

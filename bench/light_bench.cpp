@@ -6,18 +6,15 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 
-#include <nlohmann/json.hpp>
-
-#include "bench/light_source.h"
+#include "bench/bench_setup.h"
 #include "bench/stats.h"
 #include "bench/table.h"
-#include "render/gl/context.h"
 #include "render/image_compare.h"
 #include "render/passes/brute_force_pass.h"
 #include "render/renderer.h"
-#include "render/scene/scene_gpu.h"
 
 namespace lgh::bench {
 namespace {
@@ -43,32 +40,19 @@ struct InterleaveRow {
   double errorVsExact = -1;         // against the exact unshadowed sum (-1: not measured)
 };
 
-double lightPassTotal(const FrameStats& s) {
-  return s.passMs("interleave split") + s.passMs("light pass") + s.passMs("interleave resolve");
-}
-
 }  // namespace
 
 CLI::App* addLightCommand(CLI::App& app, LightBenchOptions& options) {
   CLI::App* command = app.add_subcommand(
       "light", "time the light pass and count its overdraw vs VPL count (paper Fig. 5), and interleaving 1/2/4");
   const std::map<std::string, size_t> thousands{{"K", 1000}, {"M", 1000000}};
-  command->add_option("--scene", options.scene, "glTF scene (default: ../shared/scenes/sponza_sun, else data/cornell_box)")
-      ->check(CLI::ExistingFile);
-  command->add_option("--camera", options.camera, "scene camera by name (default: the first)");
-  command->add_option("--width", options.width, "image width")->check(CLI::Range(16, 8192))->capture_default_str();
-  command->add_option("--height", options.height, "image height")->check(CLI::Range(16, 8192))->capture_default_str();
+  options.render.settings.image.width = 320;  // the bench's defaults (LightBenchOptions)
+  options.render.settings.image.height = 180;
+  options.render.settings.inputLights.bounces = 1;
+  addRenderBenchOptions(*command, options.render, kLightOwnSettings);
   command->add_option("--vpls", options.vplCounts, "VPL counts, comma-separated (1K, 1M allowed)")
       ->delimiter(',')
       ->transform(CLI::AsNumberWithUnit(thousands))
-      ->capture_default_str();
-  command->add_option("--bounces", options.bounces, "bounces per light path")->check(CLI::Range(1, 3))->capture_default_str();
-  command->add_option("--alpha", options.alpha, "LGH alpha")->check(CLI::Range(0.25, 16.0))->capture_default_str();
-  command->add_option("--clamp-distance", options.clampDistance, "d_c (0: 1e-2 x the scene diagonal)")
-      ->check(CLI::Range(0.0, 1e9))
-      ->capture_default_str();
-  command->add_option("--start-level", options.startLevel, "finest level blended (0 or 1)")
-      ->check(CLI::Range(0, 1))
       ->capture_default_str();
   command->add_option("--repeats", options.repeats, "timed frames per point")->check(CLI::PositiveNumber)->capture_default_str();
   command->add_option("--brute-force-limit", options.bruteForceLimit, "time the brute-force pass up to this many lights")
@@ -81,14 +65,10 @@ CLI::App* addLightCommand(CLI::App& app, LightBenchOptions& options) {
       ->capture_default_str();
   command->add_option("--csv", options.csvPath, "also write the rows as CSV");
   command->add_option("--json", options.jsonPath, "also write the rows as JSON");
-  command->add_option("--backend", options.backend, "OpenGL context: auto, egl, egl-device, egl-surfaceless, osmesa")
-      ->capture_default_str();
   return command;
 }
 
 int runLightBench(const LightBenchOptions& options) {
-  gl::ContextOptions contextOptions;
-  contextOptions.backend = gl::parseBackend(options.backend);
   std::optional<std::ofstream> csv, json;
   auto open = [](const std::string& path) {
     std::ofstream f(path);
@@ -98,37 +78,29 @@ int runLightBench(const LightBenchOptions& options) {
   if (!options.csvPath.empty()) csv = open(options.csvPath);
   if (!options.jsonPath.empty()) json = open(options.jsonPath);
 
-  std::string why;
-  const std::filesystem::path path = chooseRenderScene(options.scene, why);
-  const Scene scene = loadScene(path);
-  const auto context = gl::Context::create(contextOptions);
-  const SceneGpu sceneGpu(scene);
-  RenderSettings settings;
-  settings.image.width = options.width;
-  settings.image.height = options.height;
-  settings.image.camera = options.camera;
-  settings.inputLights.bounces = options.bounces;
-  settings.lightPass.alpha = options.alpha;
-  settings.lightPass.startLevel = options.startLevel;
-  settings.clampDistance = options.clampDistance;
-  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
-  Renderer renderer(sceneGpu, settings);
-  std::printf("lgh-bench light: %s (%s), %d x %d, %s\n", path.filename().string().c_str(), why.c_str(), options.width,
-              options.height, context->description().c_str());
-  std::printf("clamp distance %.3g, alpha %.3g, start level %d, %d bounce%s, %d timed frames per point (median, min-max), glFinish-bracketed ms\n\n",
-              double(renderer.clampDistance()), double(options.alpha), options.startLevel, options.bounces, options.bounces == 1 ? "" : "s", options.repeats);
+  RenderBench bench(options.render);
+  Renderer& renderer = bench.renderer().renderer();
+  const RenderSettings& settings = options.render.settings;
+  const int bounces = settings.inputLights.bounces;
+  std::printf("lgh-bench light: %s (%s), %d x %d, %s\n", bench.scenePath().filename().string().c_str(),
+              bench.sceneReason().c_str(), settings.image.width, settings.image.height,
+              bench.context().description().c_str());
+  std::printf(
+      "clamp distance %.3g, alpha %.3g, start level %d, %d bounce%s, %d timed frames per point (median, min-max), "
+      "glFinish-bracketed ms\n\n",
+      double(renderer.clampDistance()), double(settings.lightPass.alpha), settings.lightPass.startLevel, bounces,
+      bounces == 1 ? "" : "s", options.repeats);
   int exitCode = 0;
 
   // Renders with `s` (rebuilding lights when they changed) and returns the frame's stats.
-  auto frame = [&](const RenderSettings& s) {
-    renderer.setSettings(s);
-    FrameStats stats = renderer.render(view);
+  auto finite = [&](const FrameStats& stats) {
     if (stats.nonFinitePixels > 0) {
       std::fprintf(stderr, "lgh-bench light: %u NaN/Inf pixels\n", stats.nonFinitePixels);
       exitCode = 1;
     }
     return stats;
   };
+  auto frame = [&](const RenderSettings& s) { return finite(bench.renderer().render(s)); };
 
   // --- Overdraw and light-pass time vs VPL count.
   std::vector<SweepRow> rows;
@@ -136,15 +108,8 @@ int runLightBench(const LightBenchOptions& options) {
     SweepRow row;
     row.target = target;
     RenderSettings s = settings;
-    s.inputLights.vpls = int(target);
     s.lightPass.overdraw = true;
-    FrameStats counted = frame(s);
-    // Paths that leave the scene deposit nothing: scale the budget so the VPL count meets the target.
-    const size_t got = counted.lights.vpls;
-    if (got > 0 && got < target * 98 / 100) {
-      s.inputLights.vpls = int(std::min<double>(double(target) * double(target) / double(got), 16e6));
-      counted = frame(s);
-    }
+    const FrameStats counted = finite(bench.renderer().renderToVplTarget(s, target));
     row.budget = size_t(s.inputLights.vpls);
     row.inputLights = counted.lights.inputLights;
     row.levels = counted.lights.levels;
@@ -153,15 +118,16 @@ int runLightBench(const LightBenchOptions& options) {
     row.shadedPerPixel = counted.lights.shadedPerPixel;
     row.maxRasterized = counted.lights.maxRasterized;
     s.lightPass.overdraw = false;  // the counter's atomics would be timed too
-    for (int r = 0; r < options.repeats; ++r) row.lightPassMs.push_back(frame(s).passMs("light pass"));
+    for (int r = 0; r < options.repeats; ++r) row.lightPassMs.push_back(frame(s).passMs(passes::kLightPass));
     // The build is timed by changing the seed, which rebuilds S0 and the hierarchy.
     for (int r = 0; r < options.repeats; ++r) {
       s.inputLights.seed = settings.inputLights.seed + 1 + r;
-      row.buildMs.push_back(frame(s).passMs("LGH build"));
+      row.buildMs.push_back(frame(s).passMs(passes::kLghBuild));
     }
     if (row.inputLights <= options.bruteForceLimit) {
       s.lightPass.bruteForce = true;
-      for (int r = 0; r < std::min(options.repeats, 2); ++r) row.bruteForceMs.push_back(frame(s).passMs("light pass"));
+      for (int r = 0; r < std::min(options.repeats, 2); ++r)
+        row.bruteForceMs.push_back(frame(s).passMs(passes::kLightPass));
     }
     rows.push_back(row);
     std::fprintf(stderr, "  %s VPLs done\n", shortCount(target).c_str());
@@ -217,7 +183,7 @@ int runLightBench(const LightBenchOptions& options) {
       s.lightPass.overdraw = true;
       row.rasterizedPerPixel = frame(s).lights.rasterizedPerPixel;
       s.lightPass.overdraw = false;
-      for (int r = 0; r < options.repeats; ++r) row.lightPassMs.push_back(lightPassTotal(frame(s)));
+      for (int r = 0; r < options.repeats; ++r) row.lightPassMs.push_back(lightPassMs(frame(s)));
       const ImageRGBA image = renderer.readImage(Aov::Irradiance);
       if (n == 1) {
         none = image;
@@ -275,12 +241,12 @@ int runLightBench(const LightBenchOptions& options) {
   }
   if (json) {
     nlohmann::json j;
-    j["scene"] = path.string();
-    j["device"] = context->description();
-    j["width"] = options.width;
-    j["height"] = options.height;
-    j["alpha"] = options.alpha;
-    j["start_level"] = options.startLevel;
+    j["scene"] = bench.scenePath().string();
+    j["device"] = bench.context().description();
+    j["width"] = settings.image.width;
+    j["height"] = settings.image.height;
+    j["alpha"] = settings.lightPass.alpha;
+    j["start_level"] = settings.lightPass.startLevel;
     for (const SweepRow& r : rows)
       j["vpls"].push_back({{"input_lights", r.inputLights}, {"vpl_budget", r.budget}, {"levels", r.levels},
                            {"lights_per_level", r.lightsPerLevel}, {"fragments_per_pixel", r.rasterizedPerPixel},

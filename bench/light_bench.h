@@ -4,30 +4,31 @@
 // on one scene, beside the brute-force pass (every VPL at every pixel) where it finishes; then
 // interleaved sampling 1x1 / 2x2 / 4x4 at one VPL count, time and error measured in the same run.
 
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
+#include "bench/bench_setup.h"
 
 namespace lgh::bench {
 
 struct LightBenchOptions {
-  std::string scene;      // empty: ../shared/scenes/sponza_sun if present, else the project's Cornell box
-  std::string camera;
-  int width = 320, height = 180;
+  // --scene, --backend and the render settings (--width, --alpha, --bounces, ...: render/settings.h)
+  // but the bench's own (kLightOwnSettings). Its defaults where they differ from RenderSettings' (set
+  // by addLightCommand): a 320 x 180 image, one bounce.
+  RenderBenchOptions render;
   std::vector<size_t> vplCounts{1000, 10000, 100000, 1000000};
-  int bounces = 1;
-  float alpha = 1.0f;
-  float clampDistance = 0.0f;  // 0: the renderer's default (1e-2 of the scene diagonal)
-  int startLevel = 1;
   int repeats = 3;
   size_t bruteForceLimit = 20000;   // brute-force light pass timed up to this many input lights
   size_t interleaveVpls = 100000;   // 0: skip the interleaving table
   bool exactError = true;           // interleaving table: relative RMSE against the exact sum too
   std::string csvPath, jsonPath;
-  std::string backend = "auto";
 };
+
+// Settings the bench sets itself: the VPL counts (a list, --vpls), the interleaving table's factors,
+// and the overdraw counter and brute force it switches per measurement.
+inline const std::vector<std::string> kLightOwnSettings{"vpls", "interleave", "overdraw", "brute-force"};
 
 CLI::App* addLightCommand(CLI::App& app, LightBenchOptions& options);
 // Returns 0, or 1 when a sanity check failed (NaN pixels, interleaving losing more than 1% of the energy).

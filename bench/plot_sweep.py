@@ -230,14 +230,7 @@ def plot_error_vs_time(results, kind, out):
             fy = [p[1] for p in res["front"]]
             ax.step(fx + [max(ts) * 1.5], fy + [fy[-1]], where="post", color="black", lw=1, zorder=2,
                     label="Pareto front")
-            draw_baselines(ax, res, ts)
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            low = min(es + ([res["brute_ratio"][1]] if res["brute_ratio"] and res["brute_ratio"][1] else []))
-            ax.set_ylim(low * 0.7, max(2.0, max(es) * 1.3))
-            ax.grid(True, which="major", lw=0.3, alpha=0.5)
-            ax.minorticks_off()  # log axes' minor ticks triple the SVG
-            ax.tick_params(labelsize=7)
+            draw_error_axes(ax, res, ts, es)
             if i == 0:
                 ax.set_title(name, fontsize=9)
             if j == 0:
@@ -258,6 +251,18 @@ def plot_error_vs_time(results, kind, out):
     path = save(fig, os.path.join(out, f"error_vs_time_{kind}.png"), 80)
     plt.close(fig)
     return [path]
+
+
+def draw_error_axes(ax, res, ts, es):
+    """An error-vs-time panel's frame: the baselines, log-log axes from the lowest error shown, a light grid."""
+    draw_baselines(ax, res, ts)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    low = min(es + ([res["brute_ratio"][1]] if res["brute_ratio"] and res["brute_ratio"][1] else []))
+    ax.set_ylim(low * 0.7, max(2.0, max(es) * 1.3))
+    ax.grid(True, which="major", lw=0.3, alpha=0.5)
+    ax.minorticks_off()  # log axes' minor ticks triple the SVG
+    ax.tick_params(labelsize=7)
 
 
 def draw_baselines(ax, res, ts):
@@ -304,14 +309,7 @@ def plot_front(results, out):
             for n, (t, e, r) in enumerate(res["front"]):  # labels alternately above and below the front
                 ax.annotate(short_label(r), (t, e), fontsize=4.5, xytext=(3, 2 if n % 2 else -6),
                             textcoords="offset points")
-            draw_baselines(ax, res, ts)
-            ax.set_xscale("log")
-            ax.set_yscale("log")
-            low = min(es + ([res["brute_ratio"][1]] if res["brute_ratio"] and res["brute_ratio"][1] else []))
-            ax.set_ylim(low * 0.7, max(2.0, max(es) * 1.3))
-            ax.grid(True, which="major", lw=0.3, alpha=0.5)
-            ax.minorticks_off()
-            ax.tick_params(labelsize=7)
+            draw_error_axes(ax, res, ts, es)
             ax.set_title(f"{case_title(case[0], case[1], res['n'])}\n{KINDS[kind]['title']}", fontsize=7.5)
             ax.set_xlabel("time per frame (ms)", fontsize=7)
             if j == 0:

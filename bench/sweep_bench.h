@@ -11,25 +11,28 @@
 // sweep.json (and .npy images for the plots); bench/plot_sweep.py turns them into plots and the
 // README's numbers. A progress bar with the time left goes to stderr.
 
+#include <CLI/CLI.hpp>
 #include <cstddef>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
+#include "render/settings.h"
 
 namespace lgh::bench {
 
 struct SweepOptions {
   std::string preset;               // "readme", "smoke" or empty: what the unset options default to
   std::vector<std::string> scenes;  // glTF paths, each optionally PATH@CAMERA
-  int width = 320, height = 180;
-  std::vector<size_t> vpls{10000};  // VPL counts; the budget (RenderSettings::vpls) is raised until they are met
+  // Every measurement's base settings: --width, --bounces, ... (render/settings.h) but the sweep's own
+  // (kSweepOwnSettings). The sweep's default image is 320 x 180 (set by addSweepCommand).
+  RenderSettings settings;
+  std::vector<size_t> vpls{10000};  // VPL targets; the budget (inputLights.vpls) is raised until they are met
   // The LGH grid: every combination of these (a preset may use a union of smaller grids instead).
   std::vector<float> alphas{0.5f, 1.0f, 2.0f, 4.0f};
   std::vector<int> startLevels{0, 1};
   std::vector<int> interleave{1, 4};
   std::vector<int> shadowSamples{4};
-  std::vector<std::string> filter{"on"};  // on: the a-trous filter (5 passes); off: the raw ratio
+  std::vector<std::string> filter{"on"};  // on: the a-trous filter (filter-passes); off: the raw ratio
   int repeats = 3;
   // Reference: pixel fraction (0: automatic, all pixels unless that exceeds referenceBudget pairs).
   double referencePixels = 0;
@@ -38,17 +41,22 @@ struct SweepOptions {
   // estimate, a fresh set of about M lights), and with exact visibility per light.
   std::vector<size_t> uniformLights{16, 64, 256, 1024, 4096};
   std::vector<size_t> uniformShadowedLights{2, 4, 8, 16, 32, 64};
-  size_t bruteForceLimit = 30000;  // full brute force measured up to this many S0 lights, else extrapolated
+  size_t bruteForceLimit = 30000;   // full brute force measured up to this many S0 lights, else extrapolated
   std::vector<size_t> scalingVpls;  // time and overdraw vs VPL count (alpha 1, S1, k 4, 1x1 and 4x4), no error
   std::string outDir;               // default: <source>/bench/results for the readme preset, else ./sweep-results
   std::string cacheDir;             // default: reference-cache beside the executable; "none": no cache
   bool images = true;               // .npy images (reference, every point) for the strip plot, full references only
   unsigned threads = 0;             // reference workers (0: one per hardware thread)
-  int retries = 3;                  // a timed sample during which other processes took > 25% of the machine is taken again
+  int retries = 3;  // a timed sample during which other processes took > 25% of the machine is taken again
   std::string backend = "auto";
-  std::vector<std::string> set;     // NAME=VALUE: any other render setting (render/settings.h), for every point
-  CLI::App* command = nullptr;      // set by addSweepCommand: tells given options from defaults
+  std::vector<std::string> set;  // NAME=VALUE: any other render setting, as the --NAME options
+  CLI::App* command = nullptr;   // set by addSweepCommand: tells given options from defaults
 };
+
+// The render settings the sweep sets itself: the grid's (lists: --vpls, --alpha, ...), the camera
+// (--scene PATH@CAMERA) and the measurements' own (overdraw, brute force). No --set for them.
+inline const std::vector<std::string> kSweepOwnSettings{"camera",     "vpls",           "alpha",    "start-level",
+                                                        "interleave", "shadow-samples", "overdraw", "brute-force"};
 
 CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options);
 // Returns 0, or 1 when a check failed: NaN/Inf pixels or errors, the GL brute force disagreeing with

@@ -1,0 +1,42 @@
+#pragma once
+// What lgh-bench sweep measures: the scenes (PATH@CAMERA) and the grid of LGH points, with the labels
+// a point goes by in tables and file names.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "render/settings.h"
+
+namespace lgh::bench {
+
+// One LGH point of the grid: the settings a sweep varies (the rest are the case's base settings).
+struct PointSpec {
+  float alpha = 1.0f;
+  int startLevel = 1, interleave = 1, k = 4;
+  bool filter = true;  // the a-trous filter over the shadow ratio; off: the raw ratio
+  bool operator<(const PointSpec& o) const;
+  bool operator==(const PointSpec& o) const { return !(*this < o) && !(o < *this); }
+  // `base` with this point's settings.
+  RenderSettings applied(const RenderSettings& base) const;
+};
+
+// Every combination, start level slowest.
+std::vector<PointSpec> grid(const std::vector<float>& alphas, const std::vector<int>& starts,
+                            const std::vector<int>& ns, const std::vector<int>& ks, const std::vector<bool>& filters);
+// The README's sweep: alpha x start level x interleaving (1, 4), without shadows (k = 0) and with k = 4
+// and the filter; then one parameter at a time around the defaults (alpha 1, S1, 1x1, k 4).
+std::vector<PointSpec> readmePoints();
+
+std::string settingsLabel(const PointSpec& p);  // "a=1 S1 4x4 k=4", " raw" without the filter
+std::string fileLabel(const PointSpec& p);      // "a1_s1_n4_k4_filter"
+
+struct SceneSpec {
+  std::filesystem::path path;
+  std::string camera;  // empty: the scene's first camera
+  std::string name;    // file stem, for tables and file names
+};
+// PATH or PATH@CAMERA (a path that exists as given wins over the split); throws if there is no such file.
+SceneSpec parseSceneSpec(const std::string& text);
+
+}  // namespace lgh::bench

@@ -1,0 +1,512 @@
+#include "bench/sweep_runner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <tuple>
+
+#include "bench/npy.h"
+#include "bench/stats.h"
+#include "bench/sweep_reference.h"
+#include "bench/table.h"
+#include "render/image_compare.h"
+
+namespace lgh::bench {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A uniform random subset of M of the N lights, each scaled by N / M: an unbiased estimate of the sum.
+std::vector<gpu::GpuLight> uniformSubset(const std::vector<gpu::GpuLight>& all, size_t m, std::uint32_t seed) {
+  m = std::min(m, all.size());
+  std::vector<std::uint32_t> index(all.size());
+  std::iota(index.begin(), index.end(), 0u);
+  std::mt19937 rng(seed);
+  for (size_t i = 0; i < m; ++i)
+    std::swap(index[i], index[i + std::uniform_int_distribution<size_t>(0, all.size() - 1 - i)(rng)]);
+  const float scale = float(double(all.size()) / double(std::max<size_t>(m, 1)));
+  std::vector<gpu::GpuLight> out(m);
+  for (size_t i = 0; i < m; ++i) {
+    out[i] = all[index[i]];
+    out[i].intensity *= scale;
+  }
+  return out;
+}
+
+// The reference images as full frames (zero where the subset has no pixel).
+void writeReferenceNpy(const fs::path& path, const reference::ReferenceImage& ref,
+                       const std::vector<glm::dvec3>& values) {
+  std::vector<float> rgb(size_t(ref.width) * size_t(ref.height) * 3, 0.0f);
+  for (size_t k = 0; k < ref.pixels.size(); ++k)
+    for (int c = 0; c < 3; ++c) rgb[3 * size_t(ref.pixels[k]) + size_t(c)] = float(values[k][c]);
+  writeNpy(path, ref.width, ref.height, rgb);
+}
+
+// The estimate a measurement's error and image are of: the irradiance, times the visibility if given.
+glm::vec3 estimate(const ImageRGBA& irradiance, const ImageRGBA* visibility, size_t i) {
+  return glm::vec3(irradiance.pixels[i]) * (visibility ? visibility->pixels[i].r : 1.0f);
+}
+
+// The shadowed brute-force frame's time: the light pass over every light, the shadow rays and the filter.
+double bruteForceRatioMs(const FrameStats& stats) {
+  return stats.passMs(passes::kLightPass) + stats.passMs(passes::kShadowRays) + stats.passMs(passes::kShadowFilter);
+}
+
+Measurement baseline(const char* method, const RenderSettings& settings, size_t subsetLights) {
+  Measurement m;
+  m.method = method;
+  m.series = "baseline";
+  m.settings = settings;
+  m.subsetLights = subsetLights;
+  return m;
+}
+
+}  // namespace
+
+struct SweepRunner::CaseImages {
+  fs::path dir;
+  std::string prefix;  // scene_VPLs_
+  // Writes the estimate as images/<prefix><name>.npy and records it in m.
+  void write(Measurement& m, const std::string& name, const ImageRGBA& irradiance, const ImageRGBA* visibility) const {
+    const std::string file = prefix + name + ".npy";
+    writeImageNpy(dir / file, irradiance.width, irradiance.height,
+                  [&](size_t i) { return estimate(irradiance, visibility, i); });
+    m.image = (fs::path("images") / file).string();
+  }
+};
+
+SweepRunner::SweepRunner(const SweepOptions& options, std::vector<PointSpec> points, fs::path imageDir,
+                         fs::path cacheDir)
+    : options_(options),
+      points_(std::move(points)),
+      imageDir_(std::move(imageDir)),
+      cacheDir_(std::move(cacheDir)),
+      sampler_(options.retries),
+      buildPass_(GLAD_GL_NV_shader_atomic_float != 0),
+      lightPass_(GLAD_GL_NV_shader_atomic_float != 0) {}
+
+size_t SweepRunner::workPerScene() const {
+  const size_t perCase = 2 + points_.size() + 2 * options_.uniformLights.size() + options_.uniformShadowedLights.size();
+  return options_.vpls.size() * perCase + options_.scalingVpls.size() * 3;
+}
+
+RenderSettings SweepRunner::baseSettings(const SceneSpec& spec) const {
+  RenderSettings base = options_.settings;
+  base.image.camera = spec.camera;
+  return base;
+}
+
+void SweepRunner::fail(const std::string& message) {
+  std::fprintf(stderr, "lgh-bench sweep: check failed: %s\n", message.c_str());
+  failures_.push_back(message);
+}
+
+void SweepRunner::tick() {
+  ++done_;
+  if (progress_) progress_->update(double(done_));
+}
+
+FrameStats SweepRunner::timedFrame(BenchRenderer& bench, Measurement& m) {
+  FrameStats stats;
+  m.othersCpu = std::max(m.othersCpu, sampler_.sample([&] { stats = bench.renderer().render(bench.view()); }));
+  return stats;
+}
+
+std::vector<double> SweepRunner::measureBuild(const Renderer& renderer, const Scene& scene) {
+  // The hierarchy over the renderer's S0, built again (the Renderer builds it only when S0 changes): in
+  // a frame whose lights move, this is paid every frame. The options copy Renderer::buildOptions (private).
+  LghBuildOptions o;
+  o.levels = renderer.settings().hierarchy.levels;
+  o.eMin = 1e-4 * std::max(double(scene.bounds.diagonal()), 1e-6);
+  std::vector<double> samples;
+  GpuHierarchy hierarchy;
+  const InputLights& in = renderer.inputLights();
+  for (int r = 0; r < options_.repeats; ++r) {
+    double ms = 0;
+    sampler_.sample([&] { ms = timedMs([&] { buildPass_.execute(in.lights, in.count, o, hierarchy); }); });
+    samples.push_back(ms);
+  }
+  return samples;
+}
+
+// Compiles every shader variant the points use before anything is timed.
+void SweepRunner::compileVariants(BenchRenderer& bench, const RenderSettings& base) {
+  std::set<std::pair<int, bool>> variants;
+  for (const PointSpec& p : points_) variants.insert({p.startLevel, p.k > 0});
+  for (const auto& [start, shadows] : variants) {
+    RenderSettings s = base;
+    s.lightPass.startLevel = start;
+    s.shadows.samples = shadows ? 4 : 0;
+    bench.render(s);
+  }
+}
+
+Measurement SweepRunner::measureLgh(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point,
+                                    double buildMs, const reference::ReferenceImage* ref, const CaseImages* images) {
+  Measurement m;
+  m.method = methods::kLgh;
+  m.point = point;
+  RenderSettings s = point.applied(base);
+  m.settings = s;
+  m.buildMs = buildMs;
+  // Untimed: the fragment counter (its atomics would be timed too); also the warm-up.
+  s.lightPass.overdraw = true;
+  m.lights = bench.render(s).lights;
+  s.lightPass.overdraw = false;
+  bench.renderer().setSettings(s);
+  for (int r = 0; r < options_.repeats; ++r) {
+    const FrameStats stats = timedFrame(bench, m);
+    if (stats.nonFinitePixels > 0)
+      fail(std::to_string(stats.nonFinitePixels) + " NaN/Inf pixels at " + settingsLabel(point));
+    m.addPassTimes(stats);
+    const double lightPass = lightPassMs(stats);
+    m.timeUnshadowedMs.push_back(buildMs + lightPass);
+    if (point.k > 0) m.timeMs.push_back(buildMs + lightPass + shadowMs(stats));
+    m.frameMs.push_back(buildMs + stats.totalMs());
+    if (!ref) continue;
+    const ImageRGBA irradiance = bench.renderer().readImage(Aov::Irradiance);
+    const ImageRGBA visibility = bench.renderer().readImage(Aov::Visibility);
+    m.addUnshadowedError(unshadowedError(*ref, irradiance));
+    if (point.k > 0 && !ref->shadowed.empty()) m.addShadowedError(shadowedError(*ref, irradiance, &visibility));
+    if (r == options_.repeats - 1 && images)
+      images->write(m, fileLabel(point), irradiance, point.k > 0 ? &visibility : nullptr);
+  }
+  return m;
+}
+
+// Brute force over all S0 lights (RenderSettings::lightPass.bruteForce: every light full-screen,
+// unshadowed), measured up to options.bruteForceLimit lights; beyond, marked extrapolated with no time.
+Measurement SweepRunner::measureBruteForce(BenchRenderer& bench, const RenderSettings& base, size_t lights,
+                                           const reference::ReferenceImage* ref, const char* series) {
+  Measurement brute = baseline(methods::kBruteForce, base, lights);
+  brute.series = series;
+  brute.settings.lightPass.bruteForce = true;
+  brute.settings.shadows.samples = 0;
+  if (lights > options_.bruteForceLimit) {
+    brute.extrapolated = true;
+    return brute;
+  }
+  bench.render(brute.settings);  // warm-up
+  for (int r = 0; r < std::min(options_.repeats, 2); ++r) {
+    const double ms = timedFrame(bench, brute).passMs(passes::kLightPass);
+    brute.passMs[passes::kLightPass].push_back(ms);
+    brute.timeUnshadowedMs.push_back(ms);
+    if (ref) brute.addUnshadowedError(unshadowedError(*ref, bench.renderer().readImage(Aov::Irradiance)));
+  }
+  return brute;
+}
+
+// The baselines of one case, on the Renderer's G-buffer and S0: uniform subsampling (M of the N
+// lights through the light pass, or through the shadowed compute brute force), brute force over all N
+// (measured, or extrapolated from the uniform series), and the frame's shadow estimate on the exact
+// unshadowed sum and on fresh sets of about M lights.
+class SweepRunner::Baselines {
+ public:
+  Baselines(SweepRunner& runner, BenchRenderer& bench, const SceneGpu& gpu, const RenderSettings& base,
+            const std::vector<gpu::GpuLight>& lights, const reference::ReferenceImage& ref, const CaseImages* images)
+      : runner_(runner),
+        bench_(bench),
+        renderer_(bench.renderer()),
+        gpu_(gpu),
+        base_(base),
+        ref_(ref),
+        images_(images),
+        lights_(lights),
+        clamp_(renderer_.clampDistance()),
+        target_(base.image.width, base.image.height, GL_RGBA32F) {}
+
+  // Every baseline, in the order of the outputs.
+  std::vector<Measurement> measure();
+
+ private:
+  void warmUp();
+  void rasterizedBruteForce(const gl::Buffer& lights, size_t count);
+  ImageRGBA readTarget() const { return fromGLRows(target_.width(), target_.height(), target_.readRGBA()); }
+  Measurement uniform(size_t m, bool shadowed);
+  Measurement bruteForceRatio();
+  std::vector<Measurement> uniformRatio();
+  double extrapolate(const std::vector<Measurement>& runs, bool shadowed) const;
+
+  SweepRunner& runner_;
+  BenchRenderer& bench_;
+  Renderer& renderer_;
+  const SceneGpu& gpu_;
+  const RenderSettings& base_;
+  const reference::ReferenceImage& ref_;
+  const CaseImages* images_;
+  const std::vector<gpu::GpuLight>& lights_;  // S0
+  const float clamp_;
+  gl::Texture2D target_;  // the baselines' image when the Renderer does not draw them
+};
+
+std::vector<Measurement> SweepRunner::Baselines::measure() {
+  const size_t n = lights_.size();
+  warmUp();
+  std::vector<Measurement> uniformRuns, uniformShadowedRuns;
+  for (size_t m : runner_.options_.uniformLights)
+    if (m < n) uniformRuns.push_back(uniform(m, false));
+  for (size_t m : runner_.options_.uniformShadowedLights)
+    if (m < n) uniformShadowedRuns.push_back(uniform(m, true));
+  Measurement brute = runner_.measureBruteForce(bench_, base_, n, &ref_, "baseline");
+  if (brute.extrapolated) brute.timeUnshadowedMs.push_back(extrapolate(uniformRuns, false));
+  Measurement bruteRatio = bruteForceRatio();
+  runner_.tick();
+  std::vector<Measurement> uniformRatioRuns = uniformRatio();  // last: it replaces the renderer's S0
+  // Shadowed brute force (one ray per light and pixel through the GPU BVH): its cost per light from the
+  // uniform series, times N.
+  Measurement bruteShadowed = baseline(methods::kBruteForceShadowed, base_, n);
+  bruteShadowed.extrapolated = true;
+  bruteShadowed.timeMs.push_back(extrapolate(uniformShadowedRuns, true));
+
+  std::vector<Measurement> all;
+  all.push_back(std::move(brute));
+  if (!bruteRatio.timeMs.empty()) all.push_back(std::move(bruteRatio));
+  all.push_back(std::move(bruteShadowed));
+  for (auto* runs : {&uniformRuns, &uniformShadowedRuns, &uniformRatioRuns})
+    for (Measurement& m : *runs) all.push_back(std::move(m));
+  return all;
+}
+
+// Compiles the brute-force variant of the light pass and the compute brute force.
+void SweepRunner::Baselines::warmUp() {
+  const gl::Buffer one = gl::Buffer::fromVector(uniformSubset(lights_, 1, 1));
+  rasterizedBruteForce(one, 1);
+  runner_.bruteForce_.execute(renderer_.gbuffer(), one, 1, clamp_, target_, &gpu_);
+}
+
+// The light pass in brute-force mode (every light full-screen) over `lights`, into target_.
+void SweepRunner::Baselines::rasterizedBruteForce(const gl::Buffer& lights, size_t count) {
+  LightPassOptions o;
+  o.pass.bruteForce = true;
+  o.clampDistance = clamp_;
+  const int w = base_.image.width, h = base_.image.height;
+  LightPassTarget t{
+      renderer_.gbuffer().position, renderer_.gbuffer().normal, TileLayout::of(1, w, h), target_, nullptr, nullptr};
+  runner_.lightPass_.execute(lights, count, renderer_.hierarchy(), o, t);
+}
+
+// Uniform subsampling: M of the N lights, a new random subset each repeat; unshadowed through the light
+// pass, or shadowed through the compute brute force (exact visibility per light).
+Measurement SweepRunner::Baselines::uniform(size_t m, bool shadowed) {
+  Measurement u =
+      baseline(shadowed ? methods::kUniformShadowed : methods::kUniform, base_, std::min(m, lights_.size()));
+  const int repeats = runner_.options_.repeats;
+  for (int r = 0; r < repeats; ++r) {
+    const std::uint32_t seed = std::uint32_t(1000003u * m + 7919u * unsigned(r) + 17u);
+    const gl::Buffer buffer = gl::Buffer::fromVector(uniformSubset(lights_, m, seed));
+    double ms = 0;
+    u.othersCpu = std::max(u.othersCpu, runner_.sampler_.sample([&] {
+      ms = timedMs([&] {
+        if (shadowed)
+          runner_.bruteForce_.execute(renderer_.gbuffer(), buffer, u.subsetLights, clamp_, target_, &gpu_);
+        else
+          rasterizedBruteForce(buffer, u.subsetLights);
+      });
+    }));
+    const ImageRGBA image = readTarget();
+    if (shadowed) {
+      u.timeMs.push_back(ms);
+      u.passMs[kBruteForceShadowedPass].push_back(ms);
+      u.addShadowedError(shadowedError(ref_, image, nullptr));
+      if (images_ && r == repeats - 1)
+        images_->write(u, "uniform_shadowed_" + std::to_string(u.subsetLights), image, nullptr);
+    } else {
+      u.timeUnshadowedMs.push_back(ms);
+      u.passMs[passes::kLightPass].push_back(ms);
+      u.addUnshadowedError(unshadowedError(ref_, image));
+    }
+  }
+  runner_.tick();
+  return u;
+}
+
+// The frame's shadow estimate (k importance-picked rays, filtered ratio) on the exact unshadowed sum:
+// the shadow error alone, without the hierarchy's. Not measured (no times) beyond the brute-force limit.
+Measurement SweepRunner::Baselines::bruteForceRatio() {
+  Measurement ratio = baseline(methods::kBruteForceRatio, base_, lights_.size());
+  ratio.settings.lightPass.bruteForce = true;
+  if (lights_.size() > runner_.options_.bruteForceLimit || base_.shadows.samples <= 0) return ratio;
+  bench_.render(ratio.settings);  // warm-up (the selection's variant)
+  for (int r = 0; r < std::min(runner_.options_.repeats, 2); ++r) {
+    const FrameStats stats = runner_.timedFrame(bench_, ratio);
+    ratio.addPassTimes(stats);
+    ratio.timeMs.push_back(bruteForceRatioMs(stats));
+    const ImageRGBA irradiance = renderer_.readImage(Aov::Irradiance),
+                    visibility = renderer_.readImage(Aov::Visibility);
+    ratio.addShadowedError(shadowedError(ref_, irradiance, &visibility));
+  }
+  return ratio;
+}
+
+// Uniform subsampling in the frame's own pipeline: brute force over a fresh set of about M lights (VPL
+// budget and emitter samples scaled by M / N, another seed each repeat: a uniform sample of the same
+// light paths, unbiased like a subset of S0) with the frame's shadow estimate (k importance-picked rays
+// per pixel, the filter). Replaces the renderer's S0.
+std::vector<Measurement> SweepRunner::Baselines::uniformRatio() {
+  std::vector<Measurement> runs;
+  if (base_.shadows.samples <= 0) return runs;
+  const size_t n = lights_.size();
+  const int repeats = runner_.options_.repeats;
+  for (size_t m : runner_.options_.uniformLights) {
+    if (m >= n) continue;
+    RenderSettings s = base_;
+    s.lightPass.bruteForce = true;
+    const double f = double(m) / double(n);
+    s.inputLights.vpls = std::max(1, int(std::lround(double(base_.inputLights.vpls) * f)));
+    s.inputLights.emitterSamples = int(std::lround(double(base_.inputLights.emitterSamples) * f));
+    Measurement u = baseline(methods::kUniformRatio, s, 0);
+    std::vector<double> made;
+    for (int r = runs.empty() ? -1 : 0; r < repeats; ++r) {
+      s.inputLights.seed = base_.inputLights.seed + 101 + r;
+      if (r < 0) {  // the series' first set also compiles its shader variant
+        bench_.render(s);
+        continue;
+      }
+      // The frame also makes the new set (its own pass, not counted); a retry renders the same set.
+      renderer_.setSettings(s);
+      const FrameStats stats = runner_.timedFrame(bench_, u);
+      u.addPassTimes(stats);
+      u.timeMs.push_back(bruteForceRatioMs(stats));
+      made.push_back(double(stats.lights.inputLights));
+      const ImageRGBA irradiance = renderer_.readImage(Aov::Irradiance),
+                      visibility = renderer_.readImage(Aov::Visibility);
+      u.addShadowedError(shadowedError(ref_, irradiance, &visibility));
+      u.addUnshadowedError(unshadowedError(ref_, irradiance));
+      if (images_ && r == repeats - 1) images_->write(u, "uniform_ratio_" + std::to_string(m), irradiance, &visibility);
+    }
+    u.subsetLights = size_t(std::lround(median(made)));
+    runs.push_back(std::move(u));
+    runner_.tick();
+  }
+  return runs;
+}
+
+// A baseline's time over all N lights from its series over subsets (a linear fit in M).
+double SweepRunner::Baselines::extrapolate(const std::vector<Measurement>& runs, bool shadowed) const {
+  std::vector<std::pair<double, double>> points;
+  for (const Measurement& r : runs)
+    points.push_back({double(r.subsetLights), median(shadowed ? r.timeMs : r.timeUnshadowedMs)});
+  return extrapolateLinear(points, double(lights_.size()));
+}
+
+Case SweepRunner::runCase(const SceneGpu& gpu, const reference::OcclusionScene& occlusion, const SceneSpec& spec,
+                          size_t vplTarget) {
+  Case c;
+  c.scene = spec;
+  c.vplTarget = vplTarget;
+  RenderSettings base = baseSettings(spec);
+  BenchRenderer bench(gpu, base);
+  const FrameStats first = bench.renderToVplTarget(base, vplTarget);
+  Renderer& renderer = bench.renderer();
+  c.vplBudget = size_t(base.inputLights.vpls);
+  c.base = base;
+  c.inputLights = first.lights.inputLights;
+  c.vpls = first.lights.vpls;
+  c.emitterSamples = first.lights.emitterSamples;
+  c.pointLights = first.lights.pointLights;
+  c.levels = first.lights.levels;
+  c.clampDistance = renderer.clampDistance();
+  const std::vector<gpu::GpuLight> lights =
+      renderer.inputLights().lights.download<gpu::GpuLight>(renderer.inputLights().count);
+
+  ReferenceRequest request{options_.referencePixels, options_.referenceBudget, options_.threads, cacheDir_,
+                           "reference " + spec.name + " " + shortCount(vplTarget) + " VPLs"};
+  const reference::ReferenceImage ref =
+      obtainReference(occlusion, spec, renderer, fromGpuLights(lights), request, c.reference);
+  const CaseImages images{imageDir_, spec.name + "_" + shortCount(vplTarget) + "_"};
+  const bool writeImages = options_.images && ref.full();
+  if (writeImages) {
+    writeReferenceNpy(images.dir / (images.prefix + "reference_shadowed.npy"), ref, ref.shadowed);
+    writeReferenceNpy(images.dir / (images.prefix + "reference_unshadowed.npy"), ref, ref.unshadowed);
+    const ImageRGBA albedo = renderer.readImage(Aov::Albedo);
+    writeImageNpy(images.dir / (images.prefix + "albedo.npy"), albedo.width, albedo.height,
+                  [&](size_t i) { return glm::vec3(albedo.pixels[i]); });
+  }
+
+  c.buildMs = measureBuild(renderer, gpu.scene());
+  const double buildMs = spreadOf(c.buildMs).median;
+  tick();
+  compileVariants(bench, base);
+  for (const PointSpec& point : points_) {
+    Measurement m = measureLgh(bench, base, point, buildMs, &ref, writeImages ? &images : nullptr);
+    m.series = "grid";
+    c.measurements.push_back(std::move(m));
+    tick();
+  }
+  for (Measurement& m : Baselines(*this, bench, gpu, base, lights, ref, writeImages ? &images : nullptr).measure())
+    c.measurements.push_back(std::move(m));
+  for (Measurement& m : c.measurements) {
+    m.vplTarget = c.vplTarget;
+    m.vpls = c.vpls;
+    m.inputLights = c.inputLights;
+  }
+  check(c);
+  return c;
+}
+
+Case SweepRunner::runScaling(const SceneGpu& gpu, const SceneSpec& spec) {
+  Case c;
+  c.scene = spec;
+  c.scaling = true;
+  RenderSettings base = baseSettings(spec);
+  c.base = base;
+  double bruteMsPerLight = kNaN;
+  for (size_t target : options_.scalingVpls) {
+    BenchRenderer bench(gpu, base);
+    const FrameStats first = bench.renderToVplTarget(base, target);
+    const size_t inputLights = first.lights.inputLights;
+    const double buildMs = spreadOf(measureBuild(bench.renderer(), gpu.scene())).median;
+    std::vector<Measurement> rows;
+    for (int n : {1, 4}) {
+      rows.push_back(measureLgh(bench, base, PointSpec{1.0f, 1, n, 4, true}, buildMs, nullptr, nullptr));
+      rows.back().series = "scaling";
+      tick();
+    }
+    Measurement brute = measureBruteForce(bench, base, inputLights, nullptr, "scaling");
+    if (brute.extrapolated)
+      brute.timeUnshadowedMs.push_back(bruteMsPerLight * double(inputLights));
+    else
+      bruteMsPerLight = median(brute.timeUnshadowedMs) / double(std::max<size_t>(inputLights, 1));
+    rows.push_back(std::move(brute));
+    tick();
+    for (Measurement& m : rows) {
+      m.vplTarget = target;
+      m.vpls = first.lights.vpls;
+      m.inputLights = inputLights;
+      c.measurements.push_back(std::move(m));
+    }
+  }
+  return c;
+}
+
+void SweepRunner::check(const Case& c) {
+  const std::string where = c.scene.name + " " + shortCount(c.vplTarget) + " VPLs: ";
+  for (const Measurement& m : c.measurements) {
+    for (const auto* errors : {&m.rmseUnshadowed, &m.rmseShadowed})
+      for (double e : *errors)
+        if (!std::isfinite(e)) fail(where + m.method + " " + settingsLabel(m.point) + ": non-finite error");
+    // The GL brute force is the exact unshadowed sum, as the reference: they must agree.
+    if (m.method == methods::kBruteForce && !m.rmseUnshadowed.empty() && !(median(m.rmseUnshadowed) < 1e-4))
+      fail(where + "GL brute force vs the Embree reference: relative RMSE " + std::to_string(median(m.rmseUnshadowed)) +
+           " (> 1e-4)");
+  }
+  // Starting at S0, a larger alpha weights S0 more: the unshadowed error must fall (1x1, so the
+  // irradiance is deterministic; 1% slack for the float sums).
+  std::map<std::tuple<int, int, bool>, std::vector<std::pair<float, double>>> series;
+  for (const Measurement& m : c.measurements)
+    if (m.lgh() && m.point.startLevel == 0 && m.point.interleave == 1 && !m.rmseUnshadowed.empty())
+      series[{m.point.k, m.point.interleave, m.point.filter}].push_back({m.point.alpha, median(m.rmseUnshadowed)});
+  for (auto& [key, values] : series) {
+    std::sort(values.begin(), values.end());
+    for (size_t i = 1; i < values.size(); ++i)
+      if (!(values[i].second <= values[i - 1].second * 1.01))
+        fail(where + "start level 0: the unshadowed error does not fall from alpha " +
+             std::to_string(values[i - 1].first) + " (" + std::to_string(values[i - 1].second) + ") to " +
+             std::to_string(values[i].first) + " (" + std::to_string(values[i].second) + ")");
+  }
+}
+
+}  // namespace lgh::bench

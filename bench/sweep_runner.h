@@ -1,0 +1,75 @@
+#pragma once
+// The sweep's case runner: one scene at one VPL target rendered through the Renderer at every grid
+// point, measured against the exact reference, beside the baselines (brute force over all S0 lights,
+// uniform subsampling), and the time-vs-VPL-count series. The baselines that the Renderer cannot draw
+// (a chosen subset of S0, the shadowed compute brute force) use the passes' public interfaces on the
+// Renderer's G-buffer and S0.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/bench_setup.h"
+#include "bench/progress.h"
+#include "bench/quiet_sampler.h"
+#include "bench/reference.h"
+#include "bench/sweep_bench.h"
+#include "bench/sweep_case.h"
+#include "render/passes/brute_force_pass.h"
+#include "render/passes/lgh_build_pass.h"
+#include "render/passes/light_volume_pass.h"
+
+namespace lgh::bench {
+
+class SweepRunner {
+ public:
+  // imageDir: where .npy images go (options.images); cacheDir: the reference cache (empty: none).
+  // Needs a current GL context.
+  SweepRunner(const SweepOptions& options, std::vector<PointSpec> points, std::filesystem::path imageDir,
+              std::filesystem::path cacheDir);
+
+  // Units of work (progress ticks) of one scene.
+  size_t workPerScene() const;
+  void setProgress(ProgressBar* progress) { progress_ = progress; }
+
+  // Every grid point and baseline at one VPL target; checks them (failures()).
+  Case runCase(const SceneGpu& gpu, const reference::OcclusionScene& occlusion, const SceneSpec& spec,
+               size_t vplTarget);
+  // Time and overdraw at options.scalingVpls (alpha 1, S1, k 4, 1x1 and 4x4), brute force beside; no error.
+  Case runScaling(const SceneGpu& gpu, const SceneSpec& spec);
+
+  const std::vector<PointSpec>& points() const { return points_; }
+  const std::vector<std::string>& failures() const { return failures_; }
+  const QuietSampler& sampler() const { return sampler_; }
+
+ private:
+  struct CaseImages;  // where a case's .npy images go, if anywhere
+  class Baselines;    // the baselines of one case
+
+  RenderSettings baseSettings(const SceneSpec& spec) const;
+  std::vector<double> measureBuild(const Renderer& renderer, const Scene& scene);
+  void compileVariants(BenchRenderer& bench, const RenderSettings& base);
+  Measurement measureLgh(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point, double buildMs,
+                         const reference::ReferenceImage* ref, const CaseImages* images);
+  Measurement measureBruteForce(BenchRenderer& bench, const RenderSettings& base, size_t lights,
+                                const reference::ReferenceImage* ref, const char* series);
+  // One timed frame with the renderer's settings; records the others' share of the machine in m.
+  FrameStats timedFrame(BenchRenderer& bench, Measurement& m);
+  void check(const Case& c);
+  void fail(const std::string& message);
+  void tick();
+
+  const SweepOptions& options_;
+  std::vector<PointSpec> points_;
+  std::filesystem::path imageDir_, cacheDir_;
+  QuietSampler sampler_;
+  std::vector<std::string> failures_;
+  ProgressBar* progress_ = nullptr;
+  size_t done_ = 0;
+  LghBuildPass buildPass_;
+  LightVolumePass lightPass_;
+  BruteForcePass bruteForce_;
+};
+
+}  // namespace lgh::bench
