@@ -5,6 +5,7 @@
 #include <random>
 
 #include "bench/table.h"
+#include "render/passes/lgh_build_pass.h"
 #include "render/scene/surface_samples.h"
 
 namespace lgh::bench {
@@ -59,7 +60,7 @@ std::vector<Light> LightSource::lights(size_t count, std::uint32_t seed) const {
 
 double LightSource::eMin() const {
   const double diagonal = scene_ ? double(scene_->bounds.diagonal()) : std::sqrt(3.0) * kBoxSize;
-  return 1e-4 * diagonal;
+  return minTopCellFor(diagonal);
 }
 
 std::string LightSource::description() const {

@@ -115,12 +115,10 @@ FrameStats SweepRunner::timedFrame(BenchRenderer& bench, Measurement& m) {
   return stats;
 }
 
-std::vector<double> SweepRunner::measureBuild(const Renderer& renderer, const Scene& scene) {
+std::vector<double> SweepRunner::measureBuild(const Renderer& renderer) {
   // The hierarchy over the renderer's S0, built again (the Renderer builds it only when S0 changes): in
-  // a frame whose lights move, this is paid every frame. The options copy Renderer::buildOptions (private).
-  LghBuildOptions o;
-  o.levels = renderer.settings().hierarchy.levels;
-  o.eMin = 1e-4 * std::max(double(scene.bounds.diagonal()), 1e-6);
+  // a frame whose lights move, this is paid every frame. Same options as the renderer's build.
+  const LghBuildOptions o = renderer.buildOptions();
   std::vector<double> samples;
   GpuHierarchy hierarchy;
   const InputLights& in = renderer.inputLights();
@@ -426,7 +424,7 @@ Case SweepRunner::runCase(const SceneGpu& gpu, const reference::OcclusionScene& 
                   [&](size_t i) { return glm::vec3(albedo.pixels[i]); });
   }
 
-  c.buildMs = measureBuild(renderer, gpu.scene());
+  c.buildMs = measureBuild(renderer);
   const double buildMs = spreadOf(c.buildMs).median;
   tick();
   compileVariants(bench, base);
@@ -458,7 +456,7 @@ Case SweepRunner::runScaling(const SceneGpu& gpu, const SceneSpec& spec) {
     BenchRenderer bench(gpu, base);
     const FrameStats first = bench.renderToVplTarget(base, target);
     const size_t inputLights = first.lights.inputLights;
-    const double buildMs = spreadOf(measureBuild(bench.renderer(), gpu.scene())).median;
+    const double buildMs = spreadOf(measureBuild(bench.renderer())).median;
     std::vector<Measurement> rows;
     for (int n : {1, 4}) {
       rows.push_back(measureLgh(bench, base, PointSpec{1.0f, 1, n, 4, true}, buildMs, nullptr, nullptr));

@@ -48,7 +48,7 @@ class SweepRunner {
   class Baselines;    // the baselines of one case
 
   RenderSettings baseSettings(const SceneSpec& spec) const;
-  std::vector<double> measureBuild(const Renderer& renderer, const Scene& scene);
+  std::vector<double> measureBuild(const Renderer& renderer);
   void compileVariants(BenchRenderer& bench, const RenderSettings& base);
   Measurement measureLgh(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point, double buildMs,
                          const reference::ReferenceImage* ref, const CaseImages* images);

@@ -110,8 +110,7 @@ bool Renderer::pointLightsThroughLgh() const {
 LghBuildOptions Renderer::buildOptions() const {
   LghBuildOptions o;
   o.levels = settings_.hierarchy.levels;
-  // The smallest top cell: 1e-4 of the scene (one light, or lights that coincide).
-  o.eMin = 1e-4 * std::max(double(scene_.scene().bounds.diagonal()), 1e-6);
+  o.eMin = minTopCellFor(scene_.scene().bounds.diagonal());
   return o;
 }
 

@@ -84,6 +84,7 @@ class Renderer {
   const GBuffer& gbuffer() const { return gbuffer_; }
   const gl::Texture2D& texture(Aov aov) const;
   float clampDistance() const;  // d_c in use (resolves the automatic default)
+  LghBuildOptions buildOptions() const;  // how the hierarchy is built (levels, smallest top cell)
   // The input lights and hierarchy in use (built by the first render()).
   const InputLights& inputLights() const { return inputLights_; }
   const GpuHierarchy& hierarchy() const { return hierarchy_; }
@@ -95,7 +96,6 @@ class Renderer {
   bool pointLightsThroughLgh() const;
   bool shadowed() const { return settings_.shadows.samples > 0; }
   bool interleaved() const { return settings_.lightPass.interleave > 1; }
-  LghBuildOptions buildOptions() const;
   LightPassOptions lightPassOptions() const;
   LightPassTarget lightPassTarget();
   // The frame's steps that are more than one call: S0 and the hierarchy when they are out of date,

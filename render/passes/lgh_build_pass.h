@@ -13,6 +13,7 @@
 // Memory follows occupied vertices: each level is a hash table of the vertices lights touch, sized by
 // the light count, never a dense grid (which would grow as 8^L).
 
+#include <algorithm>
 #include <vector>
 
 #include "lgh/grid.h"
@@ -33,6 +34,10 @@ struct LghBuildOptions {
   double eMin = 0.0;                // smallest top-cell edge (one light, coincident lights); <= 0 means 1
   size_t maxLightsPerDispatch = 0;  // 0: as many as one storage block holds; tests set it small to exercise chunking
 };
+
+// The smallest top-cell edge e_min for a scene of this diagonal: 1e-4 of it, so that one light, or
+// lights that coincide, still get a grid at the scene's scale.
+inline double minTopCellFor(double sceneDiagonal) { return 1e-4 * std::max(sceneDiagonal, 1e-6); }
 
 struct LghLevelRange {
   size_t offset = 0, count = 0;  // into GpuHierarchy::gridLights, in grid lights
