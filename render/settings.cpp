@@ -1,30 +1,12 @@
 #include "render/settings.h"
 
-#include <cstdlib>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
 
+#include "render/text_parse.h"
+
 namespace lgh {
-namespace {
-
-// Whole-string number parsing: "2x", "" and out-of-range integers fail.
-template <typename T>
-bool parseNumber(const std::string& text, T& out) {
-  if (text.empty()) return false;
-  char* end = nullptr;
-  if constexpr (std::is_integral_v<T>) {
-    const long long v = std::strtoll(text.c_str(), &end, 10);
-    if (v < (long long)std::numeric_limits<T>::min() || v > (long long)std::numeric_limits<T>::max()) return false;
-    out = T(v);
-  } else {
-    out = T(std::strtod(text.c_str(), &end));
-  }
-  return *end == '\0';
-}
-
-}  // namespace
 
 void setSetting(RenderSettings& settings, const std::string& name, const std::string& value) {
   bool found = false;

@@ -9,6 +9,7 @@
 
 #include "render/image_io.h"
 #include "render/renderer.h"
+#include "render/text_parse.h"
 
 namespace lgh {
 namespace {
@@ -24,22 +25,6 @@ std::pair<std::string, std::string> keyValue(const std::string& word) {
   const size_t eq = word.find('=');
   if (eq == std::string::npos) return {word, ""};
   return {trim(word.substr(0, eq)), trim(word.substr(eq + 1))};
-}
-
-// The whole text must be the number: "3x" or "" is an error, not 3 or 0.
-template <typename T>
-bool parseNumber(const std::string& text, T& out) {
-  if (text.empty()) return false;
-  char* end = nullptr;
-  if constexpr (std::is_integral_v<T>) {
-    const long long v = std::strtoll(text.c_str(), &end, 10);
-    out = T(v);
-    if (*end == '\0' && (v < (long long)std::numeric_limits<T>::min() || v > (long long)std::numeric_limits<T>::max()))
-      return false;
-  } else {
-    out = T(std::strtod(text.c_str(), &end));
-  }
-  return *end == '\0';
 }
 
 bool parseVector(const std::string& text, glm::vec3& out) {
