@@ -2,6 +2,11 @@
 // Light paths from the scene's emitters through the BVH, depositing an oriented VPL at every diffuse
 // hit (LGH_VPL_PATHS), or points on emissive triangles as direct lights (LGH_EMITTER_SAMPLES).
 //
+// Every record has a fixed slot, so S0 comes out in the same order on every run whatever the order the
+// threads run in: emitter sample i writes slot i; path p writes its VPL of bounce b to slot
+// p * maxBounces + b, and a path that ends early leaves its remaining slots empty (flags = 0), removed
+// afterwards by a stable compaction (vpl_compact.comp).
+//
 // A path starts with flux Phi_e / (p_e P) (emitter power over its selection probability and the path
 // count), so the VPLs' total flux is exact in expectation. At a hit with albedo rho the surface
 // reflects flux * rho as a cosine lobe: a VPL of peak intensity flux * rho / pi. The path continues in
@@ -18,13 +23,11 @@ layout(local_size_x = 64) in;
 layout(std430, binding = LGH_BINDING_PUNCTUAL_LIGHTS) readonly buffer PunctualLights { GpuPunctualLight lights[]; };
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Emitters { GpuEmitter emitters[]; };
 layout(std430, binding = LGH_BINDING_PASS1) writeonly buffer Output { GpuLight outputLights[]; };
-layout(std430, binding = LGH_BINDING_PASS2) buffer OutputCount { uint outputCount; };
 
 uniform uint sampleCount;      // paths, or emitter samples
 uniform uint maxBounces;
 uniform uint seed;
-uniform uint outputOffset;     // first element of outputLights this pass may write
-uniform uint outputCapacity;   // elements it may write
+uniform uint outputOffset;     // first element of outputLights this pass writes
 uniform vec4 sceneSphere;      // xyz centre, w radius: where directional light enters
 
 uint chooseEmitter(float u) {  // binary search of the inclusive CDF
@@ -36,9 +39,8 @@ uint chooseEmitter(float u) {  // binary search of the inclusive CDF
   return lo;
 }
 
-void emit(vec3 position, vec3 normal, vec3 intensity) {
-  uint index = atomicAdd(outputCount, 1u);
-  if (index < outputCapacity) outputLights[outputOffset + index] = GpuLight(position, octEncode(normal), intensity, kLightOriented);
+void emit(uint slot, vec3 position, vec3 normal, vec3 intensity) {
+  outputLights[outputOffset + slot] = GpuLight(position, octEncode(normal), intensity, kLightOriented);
 }
 
 // A point on an emissive triangle, its front-face normal and its radiance there (emissive texture included).
@@ -63,7 +65,7 @@ void main() {
   vec3 position, normal, radiance;
   sampleEmissiveTriangle(e, rng, position, normal, radiance);
   float area = 0.5 * length(cross(e.edge1, e.edge2));
-  emit(position, normal, radiance * area * scale);
+  emit(index, position, normal, radiance * area * scale);
 #else
   vec3 origin, direction, flux;
   if (e.kind == kEmitterTriangle) {
@@ -102,7 +104,7 @@ void main() {
     HitSurface s = hitSurface(origin, direction, hit);
     flux *= s.albedo;  // the flux the surface reflects
     if (!(luminance(flux) > 0.0)) break;
-    emit(s.position, s.normal, flux * (1.0 / kPi));
+    emit(index * maxBounces + bounce, s.position, s.normal, flux * (1.0 / kPi));
     origin = offsetRayOrigin(s.position, s.normal);
     direction = sampleCosineHemisphere(vec2(nextFloat(rng), nextFloat(rng)), s.normal);
   }

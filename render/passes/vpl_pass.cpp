@@ -15,32 +15,48 @@ VplPass::VplPass(const SceneGpu& scene)
       triangleEmitters_(buildEmissiveTriangleTable(scene.scene())),
       allEmitterBuffer_(gl::Buffer::fromVector(allEmitters_.emitters, 0)),
       triangleEmitterBuffer_(gl::Buffer::fromVector(triangleEmitters_.emitters, 0)),
-      counter_(sizeof(GLuint)),
       emittersLightsVersion_(scene.lightsVersion()),
       paths_(gl::Program::compute("vpl_generate.comp", {{"LGH_VPL_PATHS", "1"}})),
-      emitterSamples_(gl::Program::compute("vpl_generate.comp", {{"LGH_EMITTER_SAMPLES", "1"}})) {}
+      emitterSamples_(gl::Program::compute("vpl_generate.comp", {{"LGH_EMITTER_SAMPLES", "1"}})),
+      compactFlags_(gl::Program::compute("vpl_compact.comp", {{"LGH_COMPACT_FLAGS", "1"}})),
+      compactWrite_(gl::Program::compute("vpl_compact.comp", {{"LGH_COMPACT_WRITE", "1"}})) {}
 
-size_t VplPass::run(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset,
-                    size_t capacity, size_t samples, int bounces, std::uint32_t seed) {
-  if (offset + capacity > out.size() / sizeof(gpu::GpuLight))
+void VplPass::generate(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset,
+                       size_t samples, int bounces, std::uint32_t seed) {
+  if (offset + samples * size_t(bounces) > out.size() / sizeof(gpu::GpuLight))
     throw std::out_of_range("VplPass: the output buffer is too small");
-  if (samples == 0) return 0;
   scene_.bindForCompute();
   emitters.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   out.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
-  counter_.clear();
-  counter_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   const Bounds& b = scene_.scene().bounds;
   program.set("sampleCount", GLuint(samples));
   program.set("maxBounces", GLuint(bounces));
   program.set("seed", GLuint(seed));
   program.set("outputOffset", GLuint(offset));
-  program.set("outputCapacity", GLuint(capacity));
   program.set("sceneSphere", glm::vec4(b.center(), std::max(0.5f * b.diagonal(), 1e-6f)));
   program.dispatch1D(samples, 64);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   gl::checkErrors("VPL generation");
-  return std::min<size_t>(counter_.download<GLuint>(1)[0], capacity);
+}
+
+size_t VplPass::compact(size_t slotCount, gl::Buffer& out, size_t offset) {
+  gl::ensureSize(slotIndex_, slotCount * sizeof(GLuint));
+  pathSlots_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  out.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  slotIndex_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  compactFlags_.set("slotCount", GLuint(slotCount));
+  compactFlags_.dispatch1D(slotCount, 256);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  const size_t written = prefixSum_.scan(slotIndex_, slotCount);
+  pathSlots_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  out.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  slotIndex_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  compactWrite_.set("slotCount", GLuint(slotCount));
+  compactWrite_.set("outputOffset", GLuint(offset));
+  compactWrite_.dispatch1D(slotCount, 256);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  gl::checkErrors("VPL compaction");
+  return written;
 }
 
 void VplPass::updateEmitters() {
@@ -55,14 +71,20 @@ void VplPass::updateEmitters() {
 
 size_t VplPass::tracePaths(gl::Buffer& out, size_t offset, size_t budget, int bounces, std::uint32_t seed) {
   updateEmitters();
-  if (bounces < 1 || allEmitters_.empty()) return 0;
-  return run(paths_, allEmitterBuffer_, out, offset, maxVplCount(budget, bounces), pathCount(budget, bounces), bounces,
-             seed);
+  const size_t paths = pathCount(budget, bounces), slots = maxVplCount(budget, bounces);
+  if (bounces < 1 || allEmitters_.empty() || paths == 0) return 0;
+  if (offset + slots > out.size() / sizeof(gpu::GpuLight))
+    throw std::out_of_range("VplPass: the output buffer is too small");
+  gl::ensureSize(pathSlots_, slots * sizeof(gpu::GpuLight));
+  pathSlots_.clear();  // flags 0: a slot no path wrote
+  generate(paths_, allEmitterBuffer_, pathSlots_, 0, paths, bounces, seed);
+  return compact(slots, out, offset);
 }
 
 size_t VplPass::sampleEmissiveTriangles(gl::Buffer& out, size_t offset, size_t count, std::uint32_t seed) {
-  if (triangleEmitters_.empty()) return 0;
-  return run(emitterSamples_, triangleEmitterBuffer_, out, offset, count, count, 1, seed);
+  if (triangleEmitters_.empty() || count == 0) return 0;
+  generate(emitterSamples_, triangleEmitterBuffer_, out, offset, count, 1, seed);
+  return count;  // every sample writes its slot
 }
 
 }  // namespace lgh

@@ -4,11 +4,13 @@
 //                           oriented VPL at each diffuse hit, up to `bounces` per path
 //   sampleEmissiveTriangles: points on emissive triangles as oriented direct lights
 //   in:  SceneGpu (BVH, materials, textures, punctual lights), the emitter tables built from the Scene
-//   out: gpu::GpuLight records appended to a buffer from `offset` on
+//   out: gpu::GpuLight records appended to a buffer from `offset` on, in an order that depends only on
+//        the seed (sample i, or path p's bounces in order), not on the order GPU threads run in
 
 #include <cstdint>
 
 #include "render/gl/buffer.h"
+#include "render/gl/prefix_sum.h"
 #include "render/gl/program.h"
 #include "render/scene/emitters.h"
 #include "render/scene/scene_gpu.h"
@@ -21,7 +23,7 @@ class VplPass {
 
   // Traces ceil(budget / bounces) paths; each deposits at most `bounces` VPLs, so at most
   // maxVplCount(budget, bounces) are written (that many in a closed scene): `out` must have room for
-  // them all, since dropping any would depend on thread order. Returns the number written.
+  // them all. Returns the number written.
   size_t tracePaths(gl::Buffer& out, size_t offset, size_t budget, int bounces, std::uint32_t seed);
   // `count` points on emissive triangles (chosen by power). Returns the number written.
   size_t sampleEmissiveTriangles(gl::Buffer& out, size_t offset, size_t count, std::uint32_t seed);
@@ -34,14 +36,19 @@ class VplPass {
 
  private:
   void updateEmitters();  // rebuilds the table of all emitters after the punctual lights changed
-  size_t run(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset, size_t capacity,
-             size_t samples, int bounces, std::uint32_t seed);
+  // Runs vpl_generate.comp: record `slot` of `samples` x `bounces` slots goes to out[offset + slot].
+  void generate(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset,
+                size_t samples, int bounces, std::uint32_t seed);
+  // Moves the written records of `slotCount` slots to out[offset...], in slot order; returns their count.
+  size_t compact(size_t slotCount, gl::Buffer& out, size_t offset);
 
   const SceneGpu& scene_;
   EmitterTable allEmitters_, triangleEmitters_;
-  gl::Buffer allEmitterBuffer_, triangleEmitterBuffer_, counter_;
+  gl::Buffer allEmitterBuffer_, triangleEmitterBuffer_;
+  gl::Buffer pathSlots_, slotIndex_;  // the paths' fixed slots (GpuLight, flags 0: empty) and their compaction
   unsigned emittersLightsVersion_;  // SceneGpu::lightsVersion() that allEmitters_ was built from
-  gl::Program paths_, emitterSamples_;
+  gl::Program paths_, emitterSamples_, compactFlags_, compactWrite_;
+  gl::PrefixSum prefixSum_;
 };
 
 }  // namespace lgh

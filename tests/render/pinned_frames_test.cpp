@@ -104,9 +104,23 @@ TEST_F(PinnedFramesTest, InterleavedUniformSelection) {
   checkFrames("interleaved_uniform", 1);
 }
 
-// Frames that draw S0 itself (start level 0, brute force) are not pinned: the VPL pass appends VPLs
-// through an atomic counter, so their order in S0, and with it the order of additive blending and the
-// lights that selection picks, varies from run to run. The hierarchy does not depend on that order.
+// Interleaved 2 x 2 from S0 itself (start level 0): draws S0 in its buffer order, so it also pins
+// that order (the VPL pass writes fixed slots; it once appended through an atomic counter and the
+// order, the blending sums and the lights selection picked varied from run to run).
+TEST_F(PinnedFramesTest, InterleavedFromS0) {
+  settings.lightPass.interleave = 2;
+  settings.lightPass.startLevel = 0;
+  settings.shadows.samples = 2;
+  settings.shadows.skipFinest = false;
+  checkFrames("interleaved_s0", 1);
+}
+
+// Brute force over S0 with shadow rays to the lights themselves (no jitter).
+TEST_F(PinnedFramesTest, BruteForceShadowed) {
+  settings.lightPass.bruteForce = true;
+  settings.shadows.spread = 0.0f;
+  checkFrames("brute_force", 1);
+}
 
 }  // namespace
 }  // namespace lgh::test
