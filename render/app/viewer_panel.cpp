@@ -170,22 +170,11 @@ void TimingHistory::draw() const {
   ImGui::TextDisabled("ms per pass, last %zu frames", total_.size());
 }
 
-PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
-  PanelRequests requests;
-  const Scene& scene = *info.scene;
-  const float em = ImGui::GetFontSize();
-  // A side panel the window's height, following resizes; it collapses (title bar) or hides (H).
-  ImGui::SetNextWindowPos(ImVec2(0.6f * em, 0.6f * em), ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(28.0f * em, std::max(ImGui::GetIO().DisplaySize.y - 1.2f * em, 4.0f * em)),
-                           ImGuiCond_Always);
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  if (!ImGui::Begin("lgh-viewer", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
-    ImGui::End();
-    return requests;
-  }
-  ImGui::PushItemWidth(-13.0f * em);  // room for the longest setting names
+namespace {
 
-  ImGui::Text("%s", scene.source.filename().string().c_str());
+// Scene, context, image size, what the last frame drew, and any message.
+void drawStatus(const ViewerState& state, const PanelInfo& info) {
+  ImGui::Text("%s", info.scene->source.filename().string().c_str());
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("%s", info.context.c_str());
   ImGui::PopStyleColor();
@@ -214,83 +203,105 @@ PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
     ImGui::TextWrapped("%s", info.message.c_str());
     ImGui::PopStyleColor();
   }
+}
 
-  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
-    const std::vector<std::string> names = aovNames();
-    size_t current = 0;
-    while (current + 1 < names.size() && parseAov(names[current]) != state.view) ++current;
-    if (ImGui::BeginCombo("view", names[current].c_str())) {
-      for (size_t i = 0; i < names.size(); ++i)
-        if (ImGui::Selectable(names[i].c_str(), i == current)) state.view = parseAov(names[i]);
-      ImGui::EndCombo();
-    }
-    tooltip("final; direct; indirect (unshadowed); irradiance; ratio (raw visibility); visibility (filtered); "
-            "overdraw (heat map, turns on counting); emission, albedo, normal, position");
-    if (state.view == Aov::Overdraw) state.settings.lightPass.overdraw = true;  // the heat map needs the counts
-    const int levels = info.lastFrame ? info.lastFrame->lights.levels : 0;
-    bool points = state.pointsLevel > 0;
-    // S2 to start with: S1 is dense, the top levels hold a handful of lights.
-    if (ImGui::Checkbox("grid lights as points", &points)) state.pointsLevel = points ? std::clamp(2, 1, std::max(levels, 1)) : 0;
-    if (points && levels > 0) {
-      state.pointsLevel = std::clamp(state.pointsLevel, 1, levels);
-      ImGui::SliderInt("level", &state.pointsLevel, 1, levels, "S%d", ImGuiSliderFlags_AlwaysClamp);
-      ImGui::SliderFloat("point size", &state.pointSize, 1.0f, 16.0f, "%.0f px");
-    }
-    if (!info.fixedSize)
-      ImGui::SliderFloat("render scale", &state.renderScale, 0.25f, 1.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
-    tooltip("image pixels per window pixel: below 1 renders faster and is stretched to the window");
-    ImGui::Checkbox("render continuously", &state.continuous);
-    tooltip("render every frame (live timings); otherwise only after a change");
-    if (ImGui::Button("screenshot (F12)")) requests.screenshot = true;
+// The AOV shown, grid lights as points, render scale, continuous rendering, screenshot.
+void drawViewSection(ViewerState& state, const PanelInfo& info, PanelRequests& requests) {
+  const std::vector<std::string> names = aovNames();
+  size_t current = 0;
+  while (current + 1 < names.size() && parseAov(names[current]) != state.view) ++current;
+  if (ImGui::BeginCombo("view", names[current].c_str())) {
+    for (size_t i = 0; i < names.size(); ++i)
+      if (ImGui::Selectable(names[i].c_str(), i == current)) state.view = parseAov(names[i]);
+    ImGui::EndCombo();
   }
-
-  if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) {
-    int mode = state.fly ? 1 : 0;
-    ImGui::RadioButton("orbit", &mode, 0);
-    ImGui::SameLine();
-    ImGui::RadioButton("fly", &mode, 1);
-    ImGui::SameLine();
-    if (ImGui::Button("reset (R)")) requests.resetCamera = true;
-    state.fly = mode == 1;
-    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped(state.fly ? "drag: look; WASD, Q/E: move (shift: faster); wheel: forward; Tab: orbit"
-                                 : "drag: orbit; right drag: look; middle or shift drag: pan; wheel: zoom; "
-                                   "WASD, Q/E: move; Tab: fly");
-    ImGui::PopStyleColor();
+  tooltip("final; direct; indirect (unshadowed); irradiance; ratio (raw visibility); visibility (filtered); "
+          "overdraw (heat map, turns on counting); emission, albedo, normal, position");
+  if (state.view == Aov::Overdraw) state.settings.lightPass.overdraw = true;  // the heat map needs the counts
+  const int levels = info.lastFrame ? info.lastFrame->lights.levels : 0;
+  bool points = state.pointsLevel > 0;
+  // S2 to start with: S1 is dense, the top levels hold a handful of lights.
+  if (ImGui::Checkbox("grid lights as points", &points))
+    state.pointsLevel = points ? std::clamp(2, 1, std::max(levels, 1)) : 0;
+  if (points && levels > 0) {
+    state.pointsLevel = std::clamp(state.pointsLevel, 1, levels);
+    ImGui::SliderInt("level", &state.pointsLevel, 1, levels, "S%d", ImGuiSliderFlags_AlwaysClamp);
+    ImGui::SliderFloat("point size", &state.pointSize, 1.0f, 16.0f, "%.0f px");
   }
+  if (!info.fixedSize)
+    ImGui::SliderFloat("render scale", &state.renderScale, 0.25f, 1.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
+  tooltip("image pixels per window pixel: below 1 renders faster and is stretched to the window");
+  ImGui::Checkbox("render continuously", &state.continuous);
+  tooltip("render every frame (live timings); otherwise only after a change");
+  if (ImGui::Button("screenshot (F12)")) requests.screenshot = true;
+}
 
-  if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (state.lights.empty()) {
-      ImGui::TextDisabled("no punctual lights (emissive surfaces light this scene)");
-    } else {
-      const int count = int(state.lights.size());
-      state.selectedLight = std::clamp(state.selectedLight, 0, count - 1);
-      if (count > 1) ImGui::SliderInt("light", &state.selectedLight, 0, count - 1, "%d", ImGuiSliderFlags_AlwaysClamp);
-      PunctualLight& light = state.lights[size_t(state.selectedLight)];
-      ImGui::Text("%s (%s)", light.name.empty() ? "unnamed" : light.name.c_str(), lightTypeName(light.type));
-      if (drawLight(light, scene.bounds.diagonal())) requests.changedLights.push_back(size_t(state.selectedLight));
-      ImGui::TextDisabled("a change rebuilds the VPLs and the hierarchy");
-    }
+// Orbit or fly, reset, and how to navigate.
+void drawCameraSection(ViewerState& state, PanelRequests& requests) {
+  int mode = state.fly ? 1 : 0;
+  ImGui::RadioButton("orbit", &mode, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("fly", &mode, 1);
+  ImGui::SameLine();
+  if (ImGui::Button("reset (R)")) requests.resetCamera = true;
+  state.fly = mode == 1;
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped(state.fly ? "drag: look; WASD, Q/E: move (shift: faster); wheel: forward; Tab: orbit"
+                               : "drag: orbit; right drag: look; middle or shift drag: pan; wheel: zoom; "
+                                 "WASD, Q/E: move; Tab: fly");
+  ImGui::PopStyleColor();
+}
+
+// The selected punctual light, editable; an edit is requested, not applied here.
+void drawLightsSection(ViewerState& state, const Scene& scene, PanelRequests& requests) {
+  if (state.lights.empty()) {
+    ImGui::TextDisabled("no punctual lights (emissive surfaces light this scene)");
+    return;
   }
+  const int count = int(state.lights.size());
+  state.selectedLight = std::clamp(state.selectedLight, 0, count - 1);
+  if (count > 1) ImGui::SliderInt("light", &state.selectedLight, 0, count - 1, "%d", ImGuiSliderFlags_AlwaysClamp);
+  PunctualLight& light = state.lights[size_t(state.selectedLight)];
+  ImGui::Text("%s (%s)", light.name.empty() ? "unnamed" : light.name.c_str(), lightTypeName(light.type));
+  if (drawLight(light, scene.bounds.diagonal())) requests.changedLights.push_back(size_t(state.selectedLight));
+  ImGui::TextDisabled("a change rebuilds the VPLs and the hierarchy");
+}
 
-  if (ImGui::CollapsingHeader("Render settings", ImGuiTreeNodeFlags_DefaultOpen)) {
-    if (drawSettings(state.settings, scene) && state.view == Aov::Overdraw) state.settings.lightPass.overdraw = true;
-  }
-
-  ImGui::PopItemWidth();
+// The per-pass timings in their own window, pinned to the bottom right corner (growing upwards as
+// passes appear), so they stay in sight while settings change.
+void drawTimingsWindow(const TimingHistory& timings, float em) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x - 0.6f * em, display.y - 0.6f * em), ImGuiCond_Always, ImVec2(1, 1));
+  ImGui::SetNextWindowBgAlpha(0.75f);
+  ImGui::SetNextWindowCollapsed(display.y < 25.0f * em, ImGuiCond_FirstUseEver);  // a small window needs the room
+  if (ImGui::Begin("timings", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove)) timings.draw();
   ImGui::End();
+}
 
-  // The per-pass timings in their own window, pinned to the bottom right corner (growing upwards as
-  // passes appear), so they stay in sight while settings change.
-  if (info.timings) {
-    const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::SetNextWindowPos(ImVec2(display.x - 0.6f * em, display.y - 0.6f * em), ImGuiCond_Always, ImVec2(1, 1));
-    ImGui::SetNextWindowBgAlpha(0.75f);
-    ImGui::SetNextWindowCollapsed(display.y < 25.0f * em, ImGuiCond_FirstUseEver);  // a small window needs the room
-    if (ImGui::Begin("timings", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove))
-      info.timings->draw();
-    ImGui::End();
+}  // namespace
+
+PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
+  PanelRequests requests;
+  const float em = ImGui::GetFontSize();
+  // A side panel the window's height, following resizes; it collapses (title bar) or hides (H).
+  ImGui::SetNextWindowPos(ImVec2(0.6f * em, 0.6f * em), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(28.0f * em, std::max(ImGui::GetIO().DisplaySize.y - 1.2f * em, 4.0f * em)),
+                           ImGuiCond_Always);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  if (ImGui::Begin("lgh-viewer", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+    ImGui::PushItemWidth(-13.0f * em);  // room for the longest setting names
+    drawStatus(state, info);
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) drawViewSection(state, info, requests);
+    if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) drawCameraSection(state, requests);
+    if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen))
+      drawLightsSection(state, *info.scene, requests);
+    if (ImGui::CollapsingHeader("Render settings", ImGuiTreeNodeFlags_DefaultOpen))
+      if (drawSettings(state.settings, *info.scene) && state.view == Aov::Overdraw)
+        state.settings.lightPass.overdraw = true;
+    ImGui::PopItemWidth();
   }
+  ImGui::End();
+  if (info.timings) drawTimingsWindow(*info.timings, em);
   return requests;
 }
 
