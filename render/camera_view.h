@@ -17,7 +17,7 @@
 namespace lgh {
 
 struct CameraView {
-  glm::vec3 position{0.0f};          // scene space
+  glm::vec3 position{0.0f};  // scene space
   glm::mat4 view{1.0f}, projection{1.0f};
   glm::mat4 cameraRelativeViewProjection{1.0f};  // projection x rotation: clip = M (p - position)
   glm::mat4 worldViewProjection{1.0f};           // projection x view, composed in double

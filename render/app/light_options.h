@@ -1,7 +1,6 @@
 #pragma once
 // --sun and --point for lgh-render and lgh-viewer (render/scene/added_lights.h does the work).
 #include <CLI/CLI.hpp>
-
 #include <string>
 #include <vector>
 

@@ -28,8 +28,7 @@ std::vector<double> parseNumbers(const std::string& spec, const std::string& opt
     values.push_back(v);
   }
   if (!spec.empty() && spec.back() == ',') throw bad("trailing comma");
-  if (values.size() < minCount || values.size() > maxCount)
-    throw bad(std::to_string(values.size()) + " numbers");
+  if (values.size() < minCount || values.size() > maxCount) throw bad(std::to_string(values.size()) + " numbers");
   return values;
 }
 
@@ -42,7 +41,8 @@ glm::vec3 sunDirection(float azimuthDegrees, float elevationDegrees) {
 
 glm::vec2 sunAngles(const glm::vec3& towardsSun) {
   const glm::vec3 d = glm::normalize(towardsSun);
-  return glm::vec2(float(std::atan2(d.x, d.z) / kRadians), float(std::asin(std::clamp(double(d.y), -1.0, 1.0)) / kRadians));
+  return glm::vec2(float(std::atan2(d.x, d.z) / kRadians),
+                   float(std::asin(std::clamp(double(d.y), -1.0, 1.0)) / kRadians));
 }
 
 PunctualLight parseSunOption(const std::string& spec) {
@@ -63,7 +63,8 @@ PunctualLight parseSunOption(const std::string& spec) {
 PunctualLight parsePointOption(const std::string& spec, const Scene& scene) {
   const std::string form = "X,Y,Z,INTENSITY[,R,G,B]: world position, candela, linear colour";
   const std::vector<double> v = parseNumbers(spec, "--point", form, 4, 7);
-  if (v.size() != 4 && v.size() != 7) throw std::invalid_argument("--point " + spec + ": give R,G,B together (expected " + form + ")");
+  if (v.size() != 4 && v.size() != 7)
+    throw std::invalid_argument("--point " + spec + ": give R,G,B together (expected " + form + ")");
   if (v[3] < 0.0) throw std::invalid_argument("--point " + spec + ": INTENSITY must be >= 0");
   const glm::dvec3 colour = v.size() == 7 ? glm::dvec3(v[4], v[5], v[6]) : glm::dvec3(1.0);
   if (glm::any(glm::lessThan(colour, glm::dvec3(0.0))))

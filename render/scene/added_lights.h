@@ -6,10 +6,9 @@
 // Azimuth is measured in the horizontal (x, z) plane from +Z towards +X, elevation above it (+Y up, as
 // glTF): the sun then stands in direction (cos e sin a, sin e, cos e cos a), as in the viewer's panel.
 
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "render/scene/scene.h"
 

@@ -21,13 +21,16 @@ struct BaseScene {
     q.texcoords = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     writer.addMaterial(MaterialDesc{}.named("grey").withBaseColor({0.5f, 0.5f, 0.5f, 1.0f}));
     writer.addNode(NodeDesc{}.named("floor").withMesh(writer.addMesh({q}, "floor")));
-    writer.addNode(NodeDesc{}.named("eye").withCamera(writer.addCamera(CameraDesc{}.named("eye"))).translated({0, 1, 4}));
-    writer.addNode(NodeDesc{}.named("lamp").withLight(writer.addLight(LightDesc{}.withIntensity(10))).translated({0, 2, 0}));
+    writer.addNode(
+        NodeDesc{}.named("eye").withCamera(writer.addCamera(CameraDesc{}.named("eye"))).translated({0, 1, 4}));
+    writer.addNode(
+        NodeDesc{}.named("lamp").withLight(writer.addLight(LightDesc{}.withIntensity(10))).translated({0, 2, 0}));
   }
 };
 
 // Writes the base scene with `edit` applied to its JSON (and to its binary buffer).
-std::function<fs::path(const fs::path&)> edited(const std::string& name, std::function<void(Json&, std::vector<std::uint8_t>&)> edit,
+std::function<fs::path(const fs::path&)> edited(const std::string& name,
+                                                std::function<void(Json&, std::vector<std::uint8_t>&)> edit,
                                                 std::function<void(GltfWriter&)> build = nullptr) {
   return [=](const fs::path& dir) {
     BaseScene base;
@@ -88,13 +91,19 @@ std::vector<MalformedGltf> makeCases() {
       [](Json& d, auto&) { attributeAccessor(d, "TEXCOORD_0")["normalized"] = true; },
       {"TEXCOORD_0", "normalized", "FLOAT"});
   add("NanNormal", "ACCESSOR_INVALID_FLOAT",
-      [=](Json& d, auto& bin) { poke(d, bin, d["meshes"][0]["primitives"][0]["attributes"]["NORMAL"].get<int>(), 4, nan); },
+      [=](Json& d, auto& bin) {
+        poke(d, bin, d["meshes"][0]["primitives"][0]["attributes"]["NORMAL"].get<int>(), 4, nan);
+      },
       {"NORMAL", "vertex 1", "NaN"});
   add("NanTexcoord", "ACCESSOR_INVALID_FLOAT",
-      [=](Json& d, auto& bin) { poke(d, bin, d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"].get<int>(), 5, nan); },
+      [=](Json& d, auto& bin) {
+        poke(d, bin, d["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"].get<int>(), 5, nan);
+      },
       {"TEXCOORD_0", "vertex 2", "NaN"});
   add("TranslationOverflowsFloat", "non-finite float (1e39)",
-      [](Json& d, auto&) { d["nodes"][0]["translation"] = {1e39, 0, 0}; },
+      [](Json& d, auto&) {
+        d["nodes"][0]["translation"] = {1e39, 0, 0};
+      },
       {"node 0 'floor'", "1e+39", "not a finite float"});
   add("LightIntensityOverflowsFloat", "non-finite float (1e39)",
       [](Json& d, auto&) { d["extensions"]["KHR_lights_punctual"]["lights"][0]["intensity"] = 1e39; },
@@ -123,9 +132,12 @@ std::vector<MalformedGltf> makeCases() {
       },
       {"node 0 'floor'", "(0, 0, 0, 1)"});
   add("BaseColorFactorAboveOne", "VALUE_NOT_IN_RANGE (baseColorFactor in [0, 1])",
-      [](Json& d, auto&) { d["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {2.0, 0.5, 0.5, 1.0}; },
+      [](Json& d, auto&) {
+        d["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {2.0, 0.5, 0.5, 1.0};
+      },
       {"material 0 'grey'", "baseColorFactor", "outside [0, 1]"});
-  add("UnknownAlphaMode", "VALUE_NOT_IN_LIST (alphaMode)", [](Json& d, auto&) { d["materials"][0]["alphaMode"] = "CUTOUT"; },
+  add("UnknownAlphaMode", "VALUE_NOT_IN_LIST (alphaMode)",
+      [](Json& d, auto&) { d["materials"][0]["alphaMode"] = "CUTOUT"; },
       {"material 0 'grey'", "alphaMode 'CUTOUT'", "MASK"});
   add("NegativeAlphaCutoff", "VALUE_NOT_IN_RANGE (alphaCutoff >= 0)",
       [](Json& d, auto&) {
@@ -159,8 +171,10 @@ std::vector<MalformedGltf> makeCases() {
       [](Json& d, auto& bin) {
         // Two substitutions of TEXCOORD_0 at indices 2, 1: order matters when they repeat, so glTF forbids it.
         const size_t at = bin.size();
-        for (std::uint32_t i : {2u, 1u}) bin.insert(bin.end(), reinterpret_cast<std::uint8_t*>(&i), reinterpret_cast<std::uint8_t*>(&i) + 4);
-        for (float v : {0.f, 0.f, 0.f, 0.f}) bin.insert(bin.end(), reinterpret_cast<std::uint8_t*>(&v), reinterpret_cast<std::uint8_t*>(&v) + 4);
+        for (std::uint32_t i : {2u, 1u})
+          bin.insert(bin.end(), reinterpret_cast<std::uint8_t*>(&i), reinterpret_cast<std::uint8_t*>(&i) + 4);
+        for (float v : {0.f, 0.f, 0.f, 0.f})
+          bin.insert(bin.end(), reinterpret_cast<std::uint8_t*>(&v), reinterpret_cast<std::uint8_t*>(&v) + 4);
         const int views = int(d["bufferViews"].size());
         d["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", 8}});
         d["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at + 8}, {"byteLength", 16}});
@@ -172,7 +186,8 @@ std::vector<MalformedGltf> makeCases() {
   add("SparseCountAboveCount", "ACCESSOR_SPARSE_COUNT_OUT_OF_RANGE",
       [](Json& d, auto& bin) {
         const size_t at = bin.size();
-        for (std::uint32_t i = 0; i < 5; ++i) bin.insert(bin.end(), reinterpret_cast<std::uint8_t*>(&i), reinterpret_cast<std::uint8_t*>(&i) + 4);
+        for (std::uint32_t i = 0; i < 5; ++i)
+          bin.insert(bin.end(), reinterpret_cast<std::uint8_t*>(&i), reinterpret_cast<std::uint8_t*>(&i) + 4);
         bin.insert(bin.end(), 40, 0);
         const int views = int(d["bufferViews"].size());
         d["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", 20}});
@@ -183,14 +198,18 @@ std::vector<MalformedGltf> makeCases() {
       },
       {"TEXCOORD_0", "overrides 5 elements", "accessor's 4"});
   add("EmissiveFactorAboveOne", "VALUE_NOT_IN_RANGE (emissiveFactor in [0, 1])",
-      [](Json& d, auto&) { d["materials"][0]["emissiveFactor"] = {5.0, 0.0, 0.0}; },
+      [](Json& d, auto&) {
+        d["materials"][0]["emissiveFactor"] = {5.0, 0.0, 0.0};
+      },
       {"material 0 'grey'", "emissiveFactor", "outside [0, 1]"});
   return cases;
 }
 
 }  // namespace
 
-fs::path writeUnbrokenGltf(const fs::path& dir) { return edited("unbroken", [](Json&, auto&) {})(dir); }
+fs::path writeUnbrokenGltf(const fs::path& dir) {
+  return edited("unbroken", [](Json&, auto&) {})(dir);
+}
 
 const std::vector<MalformedGltf>& malformedGltfCases() {
   static const std::vector<MalformedGltf> cases = makeCases();

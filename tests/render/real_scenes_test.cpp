@@ -3,10 +3,9 @@
 // surface for the camera, the shadow rays and the VPL paths; doubleSided, COLOR_0, TEXCOORD_1,
 // KHR_texture_transform and KHR_mesh_quantization change the image as glTF defines. Scenes are
 // written by the test (gltf_writer.h); properties are checked per pixel through the G-buffer AOVs.
-#include <glm/gtc/quaternion.hpp>
-
 #include <cstdio>
 #include <functional>
+#include <glm/gtc/quaternion.hpp>
 
 #include "gl_test_env.h"
 #include "gltf_writer.h"
@@ -70,16 +69,24 @@ glm::quat lookDown(float degrees) { return glm::angleAxis(glm::radians(-degrees)
 
 // A small site (a 4 x 4 floor, a red box, a green wall, a point light, a camera 4 units away), all
 // under one root node translated by `offset`: a survey or city model placed in world coordinates.
+// With `baked`, the offset is added to the vertex data itself (float accessors, as some exporters
+// write georeferenced models) instead of being a node translation (double in the JSON).
 std::filesystem::path writeSite(const TempDir& dir, const std::string& name, const glm::dvec3& offset,
-                                double znear = 0.1, double zfar = 100.0) {
+                                double znear = 0.1, double zfar = 100.0, bool baked = false) {
   GltfWriter w;
   const int grey = w.addMaterial(MaterialDesc{}.withBaseColor({0.7f, 0.7f, 0.7f, 1}));
   const int red = w.addMaterial(MaterialDesc{}.withBaseColor({0.8f, 0.1f, 0.1f, 1}));
   const int green = w.addMaterial(MaterialDesc{}.withBaseColor({0.1f, 0.7f, 0.1f, 1}));
-  const int mesh = w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, grey), box({0.4f, 0.35f, 0.2f}, {0.35f, 0.35f, 0.35f}, red),
-                              quad({-2, 0, -2}, {4, 0, 0}, {0, 2, 0}, green)});
-  const int site = w.addNode(NodeDesc{}.named("site").withMesh(mesh));
-  const int lamp = w.addNode(NodeDesc{}.withLight(w.addLight(LightDesc{}.withIntensity(6))).translated({-0.5, 1.6, 0.6}));
+  std::vector<PrimitiveDesc> prims = {quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, grey),
+                                      box({0.4f, 0.35f, 0.2f}, {0.35f, 0.35f, 0.35f}, red),
+                                      quad({-2, 0, -2}, {4, 0, 0}, {0, 2, 0}, green)};
+  if (baked)
+    for (PrimitiveDesc& p : prims)
+      for (glm::vec3& v : p.positions) v = glm::vec3(glm::dvec3(v) + offset);
+  const int site =
+      w.addNode(NodeDesc{}.named("site").withMesh(w.addMesh(prims)).translated(baked ? -offset : glm::dvec3(0.0)));
+  const int lamp =
+      w.addNode(NodeDesc{}.withLight(w.addLight(LightDesc{}.withIntensity(6))).translated({-0.5, 1.6, 0.6}));
   const int eye = w.addNode(NodeDesc{}
                                 .withCamera(w.addCamera(CameraDesc{}.named("eye").withClip(znear, zfar)))
                                 .translated({0, 1.5, 4})
@@ -116,19 +123,44 @@ TEST_F(GLTest, SceneFarFromTheOriginRendersAsAtTheOrigin) {
   }
 }
 
+TEST_F(GLTest, SceneWithFarCoordinatesInItsVertexDataRendersToTheFilesPrecision) {
+  // The same site with the offset written into float vertex data (the site node translated back by
+  // -offset in double, so the camera and light sit where they did): now the file itself rounds each
+  // vertex to a float ulp of the offset, 6e-5 at 1e3, 7.8e-3 at 1e5, 6.3e-2 at 1e6, against a pixel
+  // footprint of about 0.04 at the camera's distance. The renderer adds nothing to that rounding,
+  // so the image may differ only where the file's geometry moved: at edges from 1e5 on, by up to
+  // 1.7 pixels at 1e6. Bounds measured 2026-12-01, printed below.
+  TempDir dir;
+  const Frame reference = renderScene(loadScene(writeSite(dir, "origin", glm::dvec3(0.0))));
+  for (double distance : {1e3, 1e5, 1e6}) {
+    SCOPED_TRACE("vertex data at " + std::to_string(distance));
+    const Frame f = renderScene(loadScene(writeSite(dir, "baked", glm::dvec3(distance, 0, 0), 0.1, 100.0, true)));
+    const double coverage = double(coveredPixels(f)) / double(coveredPixels(reference));
+    const double error = relativeRmse(f.final, reference.final);
+    std::printf("[ baked    ] %.0e: coverage ratio %.4f, final relative RMSE %.2e\n", distance, coverage, error);
+    EXPECT_NEAR(coverage, 1.0, distance < 1e4 ? 1e-3 : 0.02);
+    EXPECT_LE(error, distance < 1e4 ? 1e-3 : distance < 1e6 ? 0.05 : 0.2);
+  }
+}
+
 TEST_F(GLTest, ExtremeClipPlanesRenderLikeOrdinaryOnes) {
-  // znear/zfar = 1e-3/1e7 (a ratio of 1e10) against 0.1/100 on the same site, plus a decal 1 mm above
-  // the floor: with a conventional depth buffer the decal would fight the floor at this ratio; with
-  // reversed Z it must win everywhere, as with ordinary clip planes.
+  // znear/zfar = 1e-3/1e7 (a ratio of 1e10) against 0.1/100, with a decal 0.1 mm above a floor about
+  // 4 m away. Its depth differs from the floor's by n dd / d^2 ~ 1e-8: below a float ulp near 1 (6e-8)
+  // where conventional depth puts it at this near plane (the decal fights the floor: checked by
+  // swapping in a conventional projection, 2026-12-01), hundreds of ulps near n/d where reversed Z
+  // puts it. The decal must win everywhere, as with ordinary clip planes.
   TempDir dir;
   const auto write = [&](const std::string& name, double znear, double zfar) {
     GltfWriter w;
     const int grey = w.addMaterial(MaterialDesc{}.withBaseColor({0.7f, 0.7f, 0.7f, 1}));
     const int blue = w.addMaterial(MaterialDesc{}.withBaseColor({0.1f, 0.2f, 0.9f, 1}));
-    w.addNode(NodeDesc{}.withMesh(w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, grey),
-                                              quad({-1, 0.001f, 1}, {2, 0, 0}, {0, 0, -2}, blue)})));
+    w.addNode(NodeDesc{}.withMesh(w.addMesh(
+        {quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, grey), quad({-1, 1e-4f, 1}, {2, 0, 0}, {0, 0, -2}, blue)})));
     w.addNode(NodeDesc{}.withLight(w.addLight(LightDesc{}.withIntensity(6))).translated({0, 2, 0}));
-    w.addNode(NodeDesc{}.withCamera(w.addCamera(CameraDesc{}.named("eye").withClip(znear, zfar))).translated({0, 1.5, 4}).rotated(lookDown(25)));
+    w.addNode(NodeDesc{}
+                  .withCamera(w.addCamera(CameraDesc{}.named("eye").withClip(znear, zfar)))
+                  .translated({0, 1.5, 4})
+                  .rotated(lookDown(25)));
     return loadScene(w.write(dir / (name + ".gltf")));
   };
   const Frame ordinary = renderScene(write("ordinary", 0.1, 100.0));
@@ -143,8 +175,11 @@ TEST_F(GLTest, ExtremeClipPlanesRenderLikeOrdinaryOnes) {
     }
   }
   EXPECT_GT(decal, size_t(500));
-  EXPECT_LE(maxAbsDifference(extreme.albedo, ordinary.albedo), 1e-6);
-  EXPECT_LE(relativeRmse(extreme.final, ordinary.final), 1e-3);
+  const double albedoError = maxAbsDifference(extreme.albedo, ordinary.albedo);
+  const double finalError = relativeRmse(extreme.final, ordinary.final);
+  std::printf("[ clip     ] 1e-3/1e7 vs 0.1/100: albedo max diff %.2e, final relative RMSE %.2e\n", albedoError, finalError);
+  EXPECT_LE(albedoError, 1e-6);
+  EXPECT_LE(finalError, 1e-3);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -165,9 +200,13 @@ Scene writeMaskScene(const TempDir& dir, const std::string& name, std::function<
                                       box({3.5f, 1.0f, -3.5f}, {0.5f, 1.0f, 0.5f}, grey)};
   if (blocker) prims.push_back(quad({-1, 1, 1}, {2, 0, 0}, {0, 0, -2}, blocker(w)));
   w.addNode(NodeDesc{}.withMesh(w.addMesh(prims)));
-  w.addNode(NodeDesc{}.withLight(w.addLight(LightDesc{}.ofType("directional").withIntensity(3)))
+  w.addNode(NodeDesc{}
+                .withLight(w.addLight(LightDesc{}.ofType("directional").withIntensity(3)))
                 .rotated(glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0))));  // -Z turned to -Y: straight down
-  w.addNode(NodeDesc{}.withCamera(w.addCamera(CameraDesc{}.named("eye").withYfov(1.0))).translated({0, 4, 5}).rotated(lookDown(40)));
+  w.addNode(NodeDesc{}
+                .withCamera(w.addCamera(CameraDesc{}.named("eye").withYfov(1.0)))
+                .translated({0, 4, 5})
+                .rotated(lookDown(40)));
   return loadScene(w.write(dir / (name + ".gltf")));
 }
 
@@ -302,9 +341,10 @@ void expectColor(const glm::vec3& got, const glm::vec3& expected, const char* wh
 TEST_F(GLTest, VertexColoursMultiplyAlbedoForCameraAndVpls) {
   TempDir dir;
   // Camera: COLOR_0 left red, right green, times the factor.
-  const Frame f = renderScene(writeFacingQuad(dir, "colours", +1, MaterialDesc{}.withBaseColor({1, 1, 1, 1}), [](PrimitiveDesc& q) {
-    q.colors = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 1, 0, 1}, {1, 0, 0, 1}};  // corners: BL, BR, TR, TL
-  }));
+  const Frame f =
+      renderScene(writeFacingQuad(dir, "colours", +1, MaterialDesc{}.withBaseColor({1, 1, 1, 1}), [](PrimitiveDesc& q) {
+        q.colors = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 1, 0, 1}, {1, 0, 0, 1}};  // corners: BL, BR, TR, TL
+      }));
   expectColor(albedoAt(f, 0.05f, 0.5f), {0.95f, 0.05f, 0.0f}, "left edge");
   expectColor(albedoAt(f, 0.95f, 0.5f), {0.05f, 0.95f, 0.0f}, "right edge");
   expectColor(albedoAt(f, 0.5f, 0.5f), {0.5f, 0.5f, 0.0f}, "centre");
@@ -317,8 +357,11 @@ TEST_F(GLTest, VertexColoursMultiplyAlbedoForCameraAndVpls) {
   wall.colors.assign(4, glm::vec4(1, 0, 0, 1));
   w.addNode(NodeDesc{}.withMesh(w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -3}, white), wall})));
   // A spot light aimed at the wall only (the floor gets no direct light).
-  w.addNode(NodeDesc{}.withLight(w.addLight(LightDesc{}.ofType("spot").withIntensity(20).withCone(0.1, 0.2))).translated({0, 1, 1.5}));
-  w.addNode(NodeDesc{}.withCamera(w.addCamera(CameraDesc{}.named("eye"))).translated({0, 2.5, 3}).rotated(lookDown(45)));
+  w.addNode(NodeDesc{}
+                .withLight(w.addLight(LightDesc{}.ofType("spot").withIntensity(20).withCone(0.1, 0.2)))
+                .translated({0, 1, 1.5}));
+  w.addNode(
+      NodeDesc{}.withCamera(w.addCamera(CameraDesc{}.named("eye"))).translated({0, 2.5, 3}).rotated(lookDown(45)));
   const Frame bounce = renderScene(loadScene(w.write(dir / "bounce.gltf")));
   glm::dvec3 floorIndirect(0.0);
   for (size_t i = 0; i < bounce.position.pixels.size(); ++i)
@@ -340,7 +383,8 @@ TEST_F(GLTest, TextureTransformAndTexcoord1SelectTheTexelsGltfDefines) {
     if (edit) edit(q);
     scene.addNode(NodeDesc{}.withMesh(scene.addMesh({q})));
     scene.addNode(NodeDesc{}.withLight(scene.addLight(LightDesc{}.withIntensity(4))).translated({0, 0, 2}));
-    scene.addNode(NodeDesc{}.withCamera(scene.addCamera(CameraDesc{}.named("eye").withYfov(0.9))).translated({0, 0, 3}));
+    scene.addNode(
+        NodeDesc{}.withCamera(scene.addCamera(CameraDesc{}.named("eye").withYfov(0.9))).translated({0, 0, 3}));
     return renderScene(loadScene(scene.write(dir / (name + ".gltf"))));
   };
   const auto plain = [](int t) { return MaterialDesc{}.withBaseColorTexture(t); };
@@ -351,7 +395,8 @@ TEST_F(GLTest, TextureTransformAndTexcoord1SelectTheTexelsGltfDefines) {
   // offset (0.5, 0), scale (0.5, 1): u' = 0.5 u + 0.5, only the right column. Points are chosen where
   // the transformed uv falls on texel centres (the 2 x 2 texture is filtered bilinearly in between).
   const Frame shifted = render("shifted", [](int t) {
-    return MaterialDesc{}.withBaseColorTexture(t).withBaseColorTransform({{"offset", {0.5, 0.0}}, {"scale", {0.5, 1.0}}});
+    return MaterialDesc{}.withBaseColorTexture(t).withBaseColorTransform(
+        {{"offset", {0.5, 0.0}}, {"scale", {0.5, 1.0}}});
   });
   expectColor(albedoAt(shifted, 0.5f, 0.25f), green, "offset+scale, top centre");
   expectColor(albedoAt(shifted, 0.5f, 0.75f), white, "offset+scale, bottom centre");
@@ -375,7 +420,10 @@ TEST_F(GLTest, TextureTransformAndTexcoord1SelectTheTexelsGltfDefines) {
   expectColor(albedoAt(second, 0.25f, 0.75f), blue, "TEXCOORD_1, bottom left");
   // The transform's texCoord overrides textureInfo.texCoord (KHR_texture_transform).
   const Frame overridden = render(
-      "override", [](int t) { return MaterialDesc{}.withBaseColorTexture(t, 0).withBaseColorTransform({{"texCoord", 1}}); },
+      "override",
+      [](int t) {
+        return MaterialDesc{}.withBaseColorTexture(t, 0).withBaseColorTransform({{"texCoord", 1}});
+      },
       [](PrimitiveDesc& q) {
         q.texcoords1 = q.texcoords;
         q.texcoords.assign(4, glm::vec2(0.25f, 0.25f));
@@ -407,7 +455,8 @@ TEST_F(GLTest, QuantizedMeshRendersLikeTheFloatMesh) {
     }
     w.addNode(NodeDesc{}.withMesh(w.addMesh(prims)).scaled(glm::vec3(extent)));
     w.addNode(NodeDesc{}.withLight(w.addLight(LightDesc{}.withIntensity(6))).translated({-0.5, 1.6, 0.6}));
-    w.addNode(NodeDesc{}.withCamera(w.addCamera(CameraDesc{}.named("eye"))).translated({0, 1.5, 4}).rotated(lookDown(18)));
+    w.addNode(
+        NodeDesc{}.withCamera(w.addCamera(CameraDesc{}.named("eye"))).translated({0, 1.5, 4}).rotated(lookDown(18)));
     return loadScene(w.write(dir / (name + ".gltf")));
   };
   const Scene floatScene = write("float", false), quantizedScene = write("quantized", true);

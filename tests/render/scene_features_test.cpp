@@ -38,7 +38,8 @@ TEST(SceneOrigin, FarAwaySceneKeepsItsPrecisionInSceneSpace) {
     const Scene far = loadScene(writeTranslatedBox(dir, "far", offset));
     // The origin lies on the grid, within half a cell of the geometry's centre.
     const glm::dvec3 fromCentre = far.origin - (offset + glm::dvec3(0.25, 0.5, -0.125));
-    EXPECT_LE(std::max({std::abs(fromCentre.x), std::abs(fromCentre.y), std::abs(fromCentre.z)}), 0.5 * grid) << distance;
+    EXPECT_LE(std::max({std::abs(fromCentre.x), std::abs(fromCentre.y), std::abs(fromCentre.z)}), 0.5 * grid)
+        << distance;
     EXPECT_EQ(glm::fract(far.origin / grid), glm::dvec3(0.0)) << distance;
     ASSERT_EQ(far.positions.size(), reference.positions.size());
     // World positions rebuilt in double agree with the translated originals to float rounding of
@@ -47,7 +48,8 @@ TEST(SceneOrigin, FarAwaySceneKeepsItsPrecisionInSceneSpace) {
       const glm::dvec3 world = glm::dvec3(scenePoint) + far.origin, expected = glm::dvec3(original) + offset;
       EXPECT_LE(glm::length(world - expected), 1e-6 + 1e-12 * distance) << what << " at " << distance;
     };
-    for (size_t i = 0; i < far.positions.size(); ++i) expectSamePoint(far.positions[i], reference.positions[i], "vertex");
+    for (size_t i = 0; i < far.positions.size(); ++i)
+      expectSamePoint(far.positions[i], reference.positions[i], "vertex");
     expectSamePoint(far.lights[0].position, reference.lights[0].position, "light");
     expectSamePoint(far.cameras[0].position, reference.cameras[0].position, "camera");
     EXPECT_LE(glm::length(glm::dvec3(far.bounds.center()) + far.origin - offset - glm::dvec3(0.25, 0.5, -0.125)), 1e-6);
@@ -77,7 +79,8 @@ TEST(SceneMaterials, AlphaModeCutoffAndDoubleSided) {
   EXPECT_FLOAT_EQ(scene.materials[maskDefault].alphaCutoff, 0.5f);  // glTF's default
   EXPECT_EQ(scene.materials[blend].alphaMode, AlphaMode::Blend);
   bool warned = false;
-  for (const std::string& warning : scene.warnings) warned |= warning.find("BLEND") != std::string::npos && warning.find("glass") != std::string::npos;
+  for (const std::string& warning : scene.warnings)
+    warned |= warning.find("BLEND") != std::string::npos && warning.find("glass") != std::string::npos;
   EXPECT_TRUE(warned) << "BLEND is rendered opaque: the user must be told";
 }
 
@@ -86,11 +89,11 @@ TEST(SceneMaterials, AlphaTestUsesFactorTextureAndVertexAlpha) {
   gpu::GpuMaterial m{};
   m.baseColorFactor = glm::vec4(1, 1, 1, 0.8f);
   m.alphaCutoff = 0.5f;
-  EXPECT_FALSE(gpu::alphaCutOut(m, 1.0f, 1.0f));   // 0.8
-  EXPECT_TRUE(gpu::alphaCutOut(m, 0.5f, 1.0f));    // 0.4: the texture's alpha counts
-  EXPECT_TRUE(gpu::alphaCutOut(m, 1.0f, 0.6f));    // 0.48: COLOR_0's alpha counts
-  EXPECT_FALSE(gpu::alphaCutOut(m, 0.625f, 1.0f)); // exactly 0.5 stays (alpha >= cutoff is opaque)
-  m.alphaCutoff = -1.0f;                           // OPAQUE and BLEND: never cut
+  EXPECT_FALSE(gpu::alphaCutOut(m, 1.0f, 1.0f));    // 0.8
+  EXPECT_TRUE(gpu::alphaCutOut(m, 0.5f, 1.0f));     // 0.4: the texture's alpha counts
+  EXPECT_TRUE(gpu::alphaCutOut(m, 1.0f, 0.6f));     // 0.48: COLOR_0's alpha counts
+  EXPECT_FALSE(gpu::alphaCutOut(m, 0.625f, 1.0f));  // exactly 0.5 stays (alpha >= cutoff is opaque)
+  m.alphaCutoff = -1.0f;                            // OPAQUE and BLEND: never cut
   EXPECT_FALSE(gpu::alphaCutOut(m, 0.0f, 0.0f));
 }
 
@@ -170,7 +173,9 @@ TEST(SceneMeshes, QuantizedAttributesDequantizeLikeTheFloatOnes) {
     ASSERT_EQ(q.positions.size(), reference.positions.size());
     const double step = normalized ? 1.0 / 32767.0 : 1.0 / 1024.0;
     for (size_t i = 0; i < q.positions.size(); ++i) {
-      EXPECT_LE(glm::length(glm::dvec3(q.positions[i]) + q.origin - glm::dvec3(reference.positions[i]) - reference.origin), step);
+      EXPECT_LE(
+          glm::length(glm::dvec3(q.positions[i]) + q.origin - glm::dvec3(reference.positions[i]) - reference.origin),
+          step);
       EXPECT_LE(glm::length(q.normals[i] - reference.normals[i]), 1e-6f);  // axis-aligned: exact in BYTE
     }
   }
