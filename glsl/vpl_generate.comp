@@ -49,6 +49,8 @@ void sampleEmissiveTriangle(GpuEmitter e, inout Rng rng, out vec3 position, out 
   normal = normalize(cross(e.edge1, e.edge2));
   SurfacePoint p = surfacePoint(e.light, b);
   radiance = e.radiance * fetchTexture(p.material.emissiveTexture, emissiveUv(p.material, p.texcoords)).rgb;
+  // A point that alphaMode MASK cuts out emits nothing (the sample still counts: unbiased).
+  if (surfaceCutOut(e.light, b)) radiance = vec3(0.0);
 }
 
 void main() {

@@ -407,6 +407,8 @@ class GltfLoader {
     if (has("File not found") || has("File read error") || has("File is empty"))
       return "cannot load a file the glTF refers to: " + err;
     if (has("decode 'uri'")) return "invalid data URI: " + err;
+    if (has("\"asset\" object not found"))  // tinygltf says this also when only asset.version is missing
+      return "asset or asset.version is missing (a glTF 2.0 file declares \"asset\": {\"version\": \"2.0\"}): " + err;
     return "invalid glTF: " + (err.empty() ? std::string("tinygltf rejected the file") : err);
   }
 
@@ -440,15 +442,17 @@ class GltfLoader {
   // rendering whatever parts happen to parse (validator: UNKNOWN_ASSET_MAJOR_VERSION).
   void checkAssetVersion() const {
     const std::string& version = model_.asset.version;
-    if (version.empty()) fail("asset.version is missing (every glTF 2.0 file declares \"asset\": {\"version\": \"2.0\"})");
-    size_t dot = version.find('.');
+    if (version.empty()) fail("asset.version is missing (a glTF 2.0 file declares \"asset\": {\"version\": \"2.0\"})");
+    const size_t dot = version.find('.');
+    const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
     const bool wellFormed = dot != std::string::npos && dot > 0 && dot + 1 < version.size() &&
-                            std::all_of(version.begin(), version.end(), [](char c) { return std::isdigit((unsigned char)c) || c == '.'; }) &&
-                            version.find('.', dot + 1) == std::string::npos;
+                            std::all_of(version.begin(), version.begin() + std::ptrdiff_t(dot), digit) &&
+                            std::all_of(version.begin() + std::ptrdiff_t(dot) + 1, version.end(), digit);
     if (!wellFormed) fail("asset.version '" + version + "' is not of the form MAJOR.MINOR");
-    if (version.substr(0, dot) != "2")
+    const std::string major = version.substr(0, dot);
+    if (major != "2")
       fail("asset.version is '" + version + "': this is not a glTF 2.0 file (only major version 2 is supported" +
-           (version.substr(0, dot) == "1" ? "; glTF 1.0 files can be converted with a tool such as gltf-pipeline)" : ")"));
+           (major == "1" ? "; glTF 1.0 files can be converted with a tool such as gltf-pipeline)" : ")"));
   }
 
   bool extensionUsed(const char* name) const {

@@ -267,6 +267,42 @@ TEST_F(GLTest, FullyCutOutQuadIsInvisibleToCameraShadowsAndVplPaths) {
   EXPECT_GT(opaqueError, 5e-3);
 }
 
+TEST_F(GLTest, CutOutPartOfAnEmissiveSurfaceEmitsNothing) {
+  // An emissive 2 x 2 quad facing down over a floor, seen from above (its single-sided back is culled),
+  // lighting the floor through emitter samples alone. With its left half cut out, the floor must get
+  // half the light: the view and the quad are symmetric in x, so each half lights it equally.
+  TempDir dir;
+  const auto render = [&](const std::string& name, bool halfCutOut) {
+    GltfWriter w;
+    const int grey = w.addMaterial(MaterialDesc{}.withBaseColor({0.5f, 0.5f, 0.5f, 1}));
+    MaterialDesc lamp = MaterialDesc{}.withEmission({1, 1, 1}, 5.0f);
+    if (halfCutOut) lamp.withBaseColorTexture(addHalfTransparentTexture(w)).withAlphaMask(0.5);
+    const int emissive = w.addMaterial(lamp);
+    w.addNode(NodeDesc{}.withMesh(
+        w.addMesh({quad({-3, 0, 3}, {6, 0, 0}, {0, 0, -6}, grey), quad({-1, 1, -1}, {2, 0, 0}, {0, 0, 2}, emissive)})));
+    w.addNode(NodeDesc{}
+                  .withCamera(w.addCamera(CameraDesc{}.named("top").withYfov(1.2)))
+                  .translated({0, 4, 0})
+                  .rotated(glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0))));
+    RenderSettings s = testSettings();
+    s.vpls = 0;
+    s.emitterSamples = 16384;
+    s.shadowSamples = 0;
+    return renderScene(loadScene(w.write(dir / (name + ".gltf"))), s);
+  };
+  const Frame full = render("full", false), half = render("half", true);
+  const auto floorLight = [](const Frame& f) {
+    double sum = 0;
+    for (size_t i = 0; i < f.position.pixels.size(); ++i)
+      if (f.position.pixels[i].w > 0 && std::abs(f.position.pixels[i].y) < 1e-3f) sum += luminance(f.indirect.pixels[i]);
+    return sum;
+  };
+  const double ratio = floorLight(half) / floorLight(full);
+  std::printf("[ mask     ] emissive quad half cut out: floor light ratio %.4f (expected 0.5)\n", ratio);
+  EXPECT_GT(floorLight(full), 0.0);
+  EXPECT_NEAR(ratio, 0.5, 0.03);
+}
+
 // ---------------------------------------------------------------------------------------------
 // doubleSided, COLOR_0, KHR_texture_transform, TEXCOORD_1
 
