@@ -76,7 +76,7 @@ struct Camera {
   glm::mat3 orientation{1.0f};  // columns: right, up, back (camera looks along -column 2), orthonormal
   float yfov = 0.7853982f;      // radians
   float aspectRatio = 0.0f;     // as stored in the file; 0 = unspecified (the image's aspect is used)
-  float znear = 0.01f, zfar = 1000.0f;
+  float znear = 0.01f, zfar = 1000.0f;  // a file's camera without zfar gets FLT_MAX: an infinite projection
 };
 
 struct MaterialRange {  // triangles [firstTriangle, firstTriangle + triangleCount) use `material`

@@ -254,7 +254,8 @@ int GltfWriter::addCamera(const CameraDesc& c) {
   if (c.type == "orthographic") {
     camera["orthographic"] = {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", c.znear}, {"zfar", c.zfar}};
   } else {
-    camera["perspective"] = {{"yfov", c.yfov}, {"znear", c.znear}, {"zfar", c.zfar}};
+    camera["perspective"] = {{"yfov", c.yfov}, {"znear", c.znear}};
+    if (c.zfar > 0.0) camera["perspective"]["zfar"] = c.zfar;  // absent: an infinite projection
     if (c.aspectRatio > 0.0) camera["perspective"]["aspectRatio"] = c.aspectRatio;
   }
   cameras_.push_back(camera);

@@ -142,7 +142,7 @@ struct LightDesc {  // fields at their "omit" value are left out, so the glTF de
 struct CameraDesc {
   std::string name;  // empty: omitted
   std::string type = "perspective";
-  double yfov = 0.8, aspectRatio = 0.0 /* 0: omitted */, znear = 0.01, zfar = 100.0;
+  double yfov = 0.8, aspectRatio = 0.0 /* 0: omitted */, znear = 0.01, zfar = 100.0 /* perspective, 0: omitted */;
 
   CameraDesc& named(std::string n) {
     name = std::move(n);

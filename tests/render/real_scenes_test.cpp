@@ -5,6 +5,7 @@
 // written by the test (gltf_writer.h); properties are checked per pixel through the G-buffer AOVs.
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <glm/gtc/quaternion.hpp>
 
 #include "gl_test_env.h"
@@ -165,6 +166,10 @@ TEST_F(GLTest, ExtremeClipPlanesRenderLikeOrdinaryOnes) {
   };
   const Frame ordinary = renderScene(write("ordinary", 0.1, 100.0));
   const Frame extreme = renderScene(write("extreme", 1e-3, 1e7));
+  const Scene infiniteScene = write("infinite", 1e-3, 0.0);  // no zfar in the file: infinite projection
+  EXPECT_EQ(infiniteScene.cameras[0].zfar, std::numeric_limits<float>::max());
+  const Frame infinite = renderScene(infiniteScene);
+  EXPECT_LE(maxAbsDifference(infinite.albedo, ordinary.albedo), 1e-6);
   size_t decal = 0;
   for (size_t i = 0; i < ordinary.albedo.pixels.size(); ++i) {
     const glm::vec4 p = ordinary.position.pixels[i];
