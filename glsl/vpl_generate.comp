@@ -48,9 +48,10 @@ void sampleEmissiveTriangle(GpuEmitter e, inout Rng rng, out vec3 position, out 
   vec2 b = sampleTriangle(vec2(nextFloat(rng), nextFloat(rng)));
   position = e.v0 + b.x * e.edge1 + b.y * e.edge2;
   normal = normalize(cross(e.edge1, e.edge2));
-  GpuSceneTriangle tri = sceneTriangles[e.light];
-  vec2 uv = (1.0 - b.x - b.y) * tri.uv0 + b.x * tri.uv1 + b.y * tri.uv2;
-  radiance = e.radiance * fetchTexture(materials[tri.material].emissiveTexture, uv).rgb;
+  SurfacePoint p = surfacePoint(e.light, b);
+  radiance = e.radiance * fetchTexture(p.material.emissiveTexture, emissiveUv(p.material, p.texcoords)).rgb;
+  // A point that alphaMode MASK cuts out emits nothing (the sample still counts: unbiased).
+  if (surfaceCutOut(e.light, b)) radiance = vec3(0.0);
 }
 
 void main() {

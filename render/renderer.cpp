@@ -137,6 +137,7 @@ void Renderer::uploadFrameUniforms(const CameraView& view) {
   gpu::FrameUniforms u{};
   u.viewProjection = view.viewProjection();
   u.inverseViewProjection = glm::inverse(u.viewProjection);
+  u.cameraRelativeViewProjection = view.cameraRelativeViewProjection;
   u.cameraPosition = glm::vec4(view.position, 1.0f);
   u.resolution = glm::uvec4(unsigned(image.width), unsigned(image.height), frameIndex_, 0u);
   const float footprint = 2.0f / (float(image.height) * std::max(std::abs(view.projection[1][1]), 1e-30f));

@@ -4,6 +4,7 @@
 #include "shared/bindings.h"
 #include "shared/bvh_types.h"
 #include "shared/ray_triangle.h"
+#include "shared/scene_materials.glsl"
 
 layout(std430, binding = LGH_BINDING_BVH_NODES) readonly buffer BvhNodes { BvhNode bvhNodes[]; };
 layout(std430, binding = LGH_BINDING_BVH_TRIANGLES) readonly buffer BvhTriangles { BvhTriangle bvhTriangles[]; };
@@ -26,7 +27,9 @@ float bvhEnterBox(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 invDirection
   return tEnter <= tExit ? tEnter : uintBitsToFloat(0x7f800000u);
 }
 
-// Walks the BVH; with anyHit it stops at the first hit inside (tMin, tMax). The build keeps the
+// Walks the BVH; with anyHit it stops at the first hit inside (tMin, tMax). Hits on triangles of
+// alphaMode MASK materials count only where the surface is not cut out (so cut-outs let light and
+// shadow rays through, as they let the camera see through). The build keeps the
 // depth below kBvhStackSize, and only one node is pushed per level, so the stack cannot overflow.
 bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, out RayHit hit) {
   hit.t = tMax;
@@ -50,7 +53,8 @@ bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, 
         uint triangleIndex = current.firstChildOrTriangle + i;
         BvhTriangle tri = bvhTriangles[triangleIndex];
         vec3 tuv;
-        if (intersectTriangle(origin, direction, tri.v0, tri.edge1, tri.edge2, tMin, hit.t, tuv)) {
+        if (intersectTriangle(origin, direction, tri.v0, tri.edge1, tri.edge2, tMin, hit.t, tuv) &&
+            ((tri.flags & kBvhTriangleAlphaMasked) == 0u || !surfaceCutOut(tri.sceneTriangle, tuv.yz))) {
           hit.t = tuv.x;
           hit.barycentrics = tuv.yz;
           hit.sceneTriangle = tri.sceneTriangle;

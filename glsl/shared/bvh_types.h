@@ -21,13 +21,14 @@ GPU_STRUCT(BvhTriangle) {
   vec3 v0;
   uint sceneTriangle;  // index into the scene's triangle list (materials, attributes)
   vec3 edge1;          // v1 - v0
-  float pad1;
+  uint flags;          // kBvhTriangleAlphaMasked: hits are alpha-tested against the material
   vec3 edge2;          // v2 - v0
   float pad2;
 };
 GPU_CHECK_SIZE(BvhTriangle, 48);
 
 GPU_CONST uint kBvhStackSize = 64u;
+GPU_CONST uint kBvhTriangleAlphaMasked = 1u;
 
 GPU_NAMESPACE_END
 #endif

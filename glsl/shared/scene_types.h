@@ -10,9 +10,16 @@ GPU_STRUCT(GpuMaterial) {
   vec3 emission;          // emissiveFactor * emissive strength
   int baseColorTexture;   // index into the scene's textures, -1 if none
   int emissiveTexture;    // -1 if none
-  uint pad0, pad1, pad2;
+  float alphaCutoff;      // alphaMode MASK: alpha below this is cut out; < 0: opaque
+  uint baseColorTexCoord; // TEXCOORD set (0 or 1) each texture reads
+  uint emissiveTexCoord;
+  vec4 baseColorUvRow0;   // KHR_texture_transform as two rows: uv' = (dot(row0.xyz, (u, v, 1)), dot(row1.xyz, ...))
+  vec4 baseColorUvRow1;
+  vec4 emissiveUvRow0;
+  vec4 emissiveUvRow1;
 };
-GPU_CHECK_SIZE(GpuMaterial, 48);
+GPU_CHECK_SIZE(GpuMaterial, 112);
+GPU_CHECK_OFFSET(GpuMaterial, baseColorUvRow0, 48);
 
 GPU_CONST uint kLightPoint = 0u;
 GPU_CONST uint kLightSpot = 1u;
@@ -30,15 +37,19 @@ GPU_STRUCT(GpuPunctualLight) {
 };
 GPU_CHECK_SIZE(GpuPunctualLight, 64);
 
-// What a compute shader needs at a ray hit besides the BVH: material and texture coordinates.
+// What a compute shader needs at a ray hit besides the BVH: the material and the corners' vertices.
 GPU_STRUCT(GpuSceneTriangle) {
   uint material;
-  uint pad;
-  vec2 uv0;
-  vec2 uv1;
-  vec2 uv2;
+  uint vertex0, vertex1, vertex2;  // indices into the scene vertices
 };
-GPU_CHECK_SIZE(GpuSceneTriangle, 32);
+GPU_CHECK_SIZE(GpuSceneTriangle, 16);
+
+// Vertex attributes that materials read (the rasterizer gets the same values as vertex streams).
+GPU_STRUCT(GpuSceneVertex) {
+  vec4 texcoords;  // xy: TEXCOORD_0, zw: TEXCOORD_1
+  vec4 color;      // COLOR_0, linear RGBA (white where the file has none)
+};
+GPU_CHECK_SIZE(GpuSceneVertex, 32);
 
 // A texture in the packed texel buffer (RGBA8 per uint, rows top-down, sRGB-encoded).
 GPU_STRUCT(GpuTextureInfo) {
@@ -68,12 +79,13 @@ GPU_CHECK_SIZE(GpuEmitter, 64);
 GPU_STRUCT(FrameUniforms) {
   mat4 viewProjection;
   mat4 inverseViewProjection;
+  mat4 cameraRelativeViewProjection;  // projection x view rotation: clip = M (p - cameraPosition), see camera_view.h
   vec4 cameraPosition;   // xyz; w unused
   uvec4 resolution;      // width, height, frame index, 0
   vec4 sceneScale;       // x: scene bounds diagonal, y: clamp distance d_c, z: pixel footprint per unit
                          // distance from the camera (2 tan(fovy/2) / height), w: unused
 };
-GPU_CHECK_SIZE(FrameUniforms, 176);
+GPU_CHECK_SIZE(FrameUniforms, 240);
 
 GPU_NAMESPACE_END
 #endif

@@ -9,6 +9,8 @@
 #include <map>
 
 #include "render/app/cli_settings.h"
+#include "render/app/light_options.h"
+#include "render/scene/added_lights.h"
 #include "render/gl/context.h"
 #include "render/renderer.h"
 #include "render/scene/scene_gpu.h"
@@ -29,6 +31,7 @@ int run(int argc, char** argv) {
   std::vector<std::string> aovOutputs;
   bool quiet = false, debugGL = false;
   lgh::RenderSettings settings;
+  lgh::AddedLightOptions addedLights;
 
   app.add_option("scene", scenePath, "glTF scene (.gltf or .glb)")->capture_default_str();
   app.add_option("-o,--output", output, "output image: .png/.jpg (tone-mapped sRGB) or .exr/.hdr (linear HDR)")
@@ -46,6 +49,7 @@ int run(int argc, char** argv) {
   app.add_flag("-q,--quiet", quiet, "print nothing but errors");
   app.add_flag("--debug-gl", debugGL, "KHR_debug context: GL errors abort the render with the driver's message");
   lgh::addSettingsOptions(app, settings);
+  lgh::addLightOptions(app, addedLights);
   CLI11_PARSE(app, argc, argv);
 
   // Validate everything cheap before any work: a bad AOV name or extension fails in milliseconds.
@@ -60,9 +64,11 @@ int run(int argc, char** argv) {
   for (const auto& [aov, path] : aovs) lgh::checkImagePath(path);
 
   const auto t0 = Clock::now();
-  const lgh::Scene scene = lgh::loadScene(scenePath);
+  lgh::Scene scene = lgh::loadScene(scenePath);
+  lgh::addCommandLineLights(scene, addedLights.suns, addedLights.points);
   const double loadMs = msSince(t0);
   for (const std::string& w : scene.warnings) std::cerr << "lgh-render: warning: " << w << "\n";
+  if (!lgh::sceneHasLight(scene)) std::cerr << "lgh-render: note: " << lgh::noLightHint() << "\n";
   const lgh::Camera camera = lgh::resolveCamera(scene, settings);
 
   lgh::gl::ContextOptions contextOptions;

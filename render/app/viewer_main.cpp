@@ -11,6 +11,8 @@
 #include <string>
 
 #include "render/app/cli_settings.h"
+#include "render/app/light_options.h"
+#include "render/scene/added_lights.h"
 #include "render/app/viewer_app.h"
 #include "render/gl/context.h"
 
@@ -25,6 +27,7 @@ int run(int argc, char** argv) {
   lgh::ViewerState state;
   lgh::ViewerOptions options;
   bool debugGL = false;
+  lgh::AddedLightOptions addedLights;
 
   app.add_option("scene", scenePath, "glTF scene (.gltf or .glb)")->capture_default_str();
   app.add_option("--view", view, "image shown: " + [] {
@@ -50,6 +53,7 @@ int run(int argc, char** argv) {
   app.add_flag("-q,--quiet", options.quiet, "print nothing but errors");
   app.add_flag("--debug-gl", debugGL, "KHR_debug context: GL errors abort with the driver's message");
   lgh::addSettingsOptions(app, state.settings);
+  lgh::addLightOptions(app, addedLights);
   CLI11_PARSE(app, argc, argv);
   // Without a size the window opens at 1280 x 720 and renders at half that (lgh-render's default
   // 640 x 360): room for the panel, and frames as fast as lgh-render's.
@@ -62,8 +66,10 @@ int run(int argc, char** argv) {
   if (state.view == lgh::Aov::Overdraw) state.settings.lightPass.overdraw = true;
   lgh::parseToneMap(state.settings.image.toneMap);
   const std::vector<lgh::ScriptCommand> commands = lgh::parseScript(script);
-  const lgh::Scene scene = lgh::loadScene(scenePath);
+  lgh::Scene scene = lgh::loadScene(scenePath);
+  lgh::addCommandLineLights(scene, addedLights.suns, addedLights.points);  // editable in the light panel
   for (const std::string& w : scene.warnings) std::cerr << "lgh-viewer: warning: " << w << "\n";
+  if (!lgh::sceneHasLight(scene)) std::cerr << "lgh-viewer: note: " << lgh::noLightHint() << "\n";
   lgh::resolveCamera(scene, state.settings);  // an unknown --camera fails here, listing the cameras
   for (const lgh::ScriptCommand& c : commands)
     if (c.kind == lgh::ScriptCommand::Kind::Light && size_t(c.number) >= scene.lights.size())

@@ -10,10 +10,11 @@
 #include <iterator>
 #include <type_traits>
 
+#include "render/scene/added_lights.h"
+
 namespace lgh {
 namespace {
 
-constexpr float kDegrees = 57.29577951f;
 const char* const kToneMaps[] = {"aces", "reinhard", "clamp"};
 
 void tooltip(const char* help) {
@@ -106,13 +107,13 @@ bool drawLight(PunctualLight& light, float sceneSize) {
   if (light.type != LightType::Directional)
     changed |= ImGui::DragFloat3("position", &light.position.x, 0.002f * sceneSize, 0.0f, 0.0f, "%.3f");
   if (light.type != LightType::Point) {
-    const glm::vec3 d = glm::normalize(directional ? -light.direction : light.direction);
-    float azimuth = std::atan2(d.x, d.z) * kDegrees, elevation = std::asin(std::clamp(d.y, -1.0f, 1.0f)) * kDegrees;
+    // The same angles as lgh-render --sun AZIMUTH,ELEVATION (render/scene/added_lights.h).
+    const glm::vec2 angles = sunAngles(directional ? -light.direction : light.direction);
+    float azimuth = angles.x, elevation = angles.y;
     bool turned = ImGui::SliderFloat(directional ? "sun azimuth" : "azimuth", &azimuth, -180.0f, 180.0f, "%.1f deg");
     turned |= ImGui::SliderFloat(directional ? "sun elevation" : "elevation", &elevation, -90.0f, 90.0f, "%.1f deg");
     if (turned) {
-      const float a = azimuth / kDegrees, e = elevation / kDegrees;
-      const glm::vec3 dir(std::cos(e) * std::sin(a), std::sin(e), std::cos(e) * std::cos(a));
+      const glm::vec3 dir = sunDirection(azimuth, elevation);
       light.direction = directional ? -dir : dir;
       changed = true;
     }

@@ -28,19 +28,38 @@ void GBufferPass::execute(const SceneGpu& scene, GBuffer& out) const {
   out.framebuffer.bind();
   const float zero[4] = {0, 0, 0, 0};
   for (int i = 0; i < 4; ++i) glClearNamedFramebufferfv(out.framebuffer.id(), GL_COLOR, i, zero);
-  glClearNamedFramebufferfi(out.framebuffer.id(), GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  // Reversed Z (render/camera_view.h): depth 1 at the near plane, cleared to 0 (infinitely far), the
+  // nearer surface has the greater depth; [0, 1] clip depth so the float buffer keeps its precision.
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+  glClearNamedFramebufferfi(out.framebuffer.id(), GL_DEPTH_STENCIL, 0, 0.0f, 0);
   glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDisable(GL_CULL_FACE);  // glTF materials may be double-sided; the shader flips normals to the viewer
+  glDepthFunc(GL_GREATER);
   glDisable(GL_BLEND);
+  glFrontFace(GL_CCW);
+  glCullFace(GL_BACK);
   program_.use();
-  scene.drawByMaterial([&](std::uint32_t, const gpu::GpuMaterial& m) {
+  scene.drawByMaterial([&](std::uint32_t index, const gpu::GpuMaterial& m) {
+    // glTF: single-sided materials are invisible from behind; double-sided ones are seen from both sides.
+    if (scene.scene().materials[index].doubleSided)
+      glDisable(GL_CULL_FACE);
+    else
+      glEnable(GL_CULL_FACE);
     program_.set("baseColorFactor", m.baseColorFactor);
-    program_.set("emissionFactor", m.emission);
+    program_.set("emission", m.emission);
+    program_.set("alphaCutoff", m.alphaCutoff);
+    program_.set("baseColorTexCoord", m.baseColorTexCoord);
+    program_.set("emissiveTexCoord", m.emissiveTexCoord);
+    program_.set("baseColorUvRow0", m.baseColorUvRow0);
+    program_.set("baseColorUvRow1", m.baseColorUvRow1);
+    program_.set("emissiveUvRow0", m.emissiveUvRow0);
+    program_.set("emissiveUvRow1", m.emissiveUvRow1);
     scene.texture(m.baseColorTexture).bindTexture(LGH_TEXTURE_MATERIAL_BASE_COLOR);
     scene.texture(m.emissiveTexture).bindTexture(LGH_TEXTURE_MATERIAL_EMISSIVE);
   });
+  glDisable(GL_CULL_FACE);
   glDisable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);  // other passes use GL's default
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   gl::checkErrors("G-buffer pass");
 }

@@ -76,7 +76,7 @@ class Builder {
     for (std::uint32_t t : order_) {
       const glm::vec3 v0 = positions_[indices_[3 * t]], v1 = positions_[indices_[3 * t + 1]],
                       v2 = positions_[indices_[3 * t + 2]];
-      bvh.triangles.push_back({v0, t, v1 - v0, 0.0f, v2 - v0, 0.0f});
+      bvh.triangles.push_back({v0, t, v1 - v0, 0u, v2 - v0, 0.0f});
     }
     bvh.stats.nodeCount = bvh.nodes.size();
     const float rootArea = std::max(Box{bvh.nodes[0].boundsMin, bvh.nodes[0].boundsMax}.area(), 1e-30f);

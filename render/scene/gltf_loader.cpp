@@ -4,10 +4,17 @@
 // code); everything after that is ours: every index the file contains is range-checked and every
 // byte an accessor reads is bounds-checked here, because tinygltf 2.7 checks neither and a bad
 // file must end in SceneLoadError, never a crash. Order of work:
-//   read file → parse (tinygltf) → required extensions → node world transforms (tree check) →
-//   meshes (triangles bucketed by material) → materials (+ the textures they use) → lights →
-//   cameras → group triangles by material, bounds.
+//   read file → parse (tinygltf) → asset version, required extensions → node world transforms (tree
+//   check, double precision) → meshes (triangles bucketed by material, world positions in double) →
+//   scene origin (positions shifted to scene space, then float) → materials (+ the textures they
+//   use) → lights → cameras → group triangles by material, bounds.
+// Strictness: what the glTF 2.0 specification forbids and would change the image (the Khronos
+// validator's errors that apply to what this renderer reads; README "Strict glTF 2.0") ends in
+// SceneLoadError. Numbers are checked where they become float: a JSON value such as 1e39 is a
+// finite double but an infinite float.
 #include <tiny_gltf.h>
+
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -58,7 +65,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kSupportedExtensions[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength"};
+const char* const kSupportedExtensions[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                            "KHR_texture_transform", "KHR_mesh_quantization"};
 
 // Image callback for tinygltf: keep embedded (data URI) images encoded, so that only the images a
 // material uses are ever decoded. Images in a bufferView are left alone here; the loader reads
@@ -78,11 +86,26 @@ std::string label(const char* kind, size_t index, const std::string& name) {
 }
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+template <int N>
+bool finiteVec(const glm::vec<N, float>& v) {
+  for (int i = 0; i < N; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+// True when `v` survives the conversion to float (finite and within float's range).
+bool fitsFloat(double v) { return std::isfinite(v) && std::abs(v) <= double(std::numeric_limits<float>::max()); }
+
+std::string number(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
 
 // Unit normal of triangle (a, b, c) wound counter-clockwise, or `fallback` for zero-area (or
 // non-finite) triangles. Computed in double: slivers far from the origin lose their normal in float.
-glm::vec3 faceNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, const glm::vec3& fallback) {
-  const glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
+glm::vec3 faceNormal(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const glm::vec3& fallback) {
+  const glm::dvec3 n = glm::cross(b - a, c - a);
   const double length = glm::length(n);
   if (!(length > 0.0) || !std::isfinite(length)) return fallback;
   return glm::vec3(n / length);
@@ -151,6 +174,68 @@ float readComponent(const unsigned char* p, int componentType, bool normalized) 
     default:
       return 0.0f;
   }
+}
+
+const char* componentTypeName(int componentType) {
+  switch (componentType) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+    default: return "an invalid component type";
+  }
+}
+
+const char* typeName(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "an invalid type";
+  }
+}
+
+// The accessor formats glTF 2.0 allows for the vertex attributes this renderer reads (spec 3.7.2.1),
+// widened by KHR_mesh_quantization when the file uses it. A format outside these lists is an error
+// (validator: MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT): reading it anyway would guess.
+struct AttributeFormat {
+  int type, componentType;
+  bool normalized;
+};
+bool allowedFormat(const std::string& attribute, const AttributeFormat& f, bool quantization) {
+  const int kF = TINYGLTF_COMPONENT_TYPE_FLOAT, kB = TINYGLTF_COMPONENT_TYPE_BYTE,
+            kUB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, kS = TINYGLTF_COMPONENT_TYPE_SHORT,
+            kUS = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  const bool isFloat = f.componentType == kF && !f.normalized;
+  const bool smallInt = f.componentType == kB || f.componentType == kUB || f.componentType == kS || f.componentType == kUS;
+  const bool signedNormalized = f.normalized && (f.componentType == kB || f.componentType == kS);
+  const bool unsignedNormalized = f.normalized && (f.componentType == kUB || f.componentType == kUS);
+  if (attribute == "POSITION") return f.type == TINYGLTF_TYPE_VEC3 && (isFloat || (quantization && smallInt));
+  if (attribute == "NORMAL") return f.type == TINYGLTF_TYPE_VEC3 && (isFloat || (quantization && signedNormalized));
+  if (attribute.rfind("TEXCOORD_", 0) == 0)
+    return f.type == TINYGLTF_TYPE_VEC2 && (isFloat || unsignedNormalized || (quantization && smallInt));
+  if (attribute.rfind("COLOR_", 0) == 0)
+    return (f.type == TINYGLTF_TYPE_VEC3 || f.type == TINYGLTF_TYPE_VEC4) && (isFloat || unsignedNormalized);
+  return true;  // attributes this renderer does not read
+}
+
+std::string allowedFormatsText(const std::string& attribute, bool quantization) {
+  if (attribute == "POSITION")
+    return quantization ? "VEC3 FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT (KHR_mesh_quantization)"
+                        : "VEC3 FLOAT (other types need KHR_mesh_quantization)";
+  if (attribute == "NORMAL")
+    return quantization ? "VEC3 FLOAT, or normalized BYTE or SHORT (KHR_mesh_quantization)"
+                        : "VEC3 FLOAT (other types need KHR_mesh_quantization)";
+  if (attribute.rfind("TEXCOORD_", 0) == 0)
+    return quantization ? "VEC2 FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT (KHR_mesh_quantization)"
+                        : "VEC2 FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT";
+  return "VEC3 or VEC4 FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT";
 }
 
 std::uint32_t readIndex(const unsigned char* p, int componentType) {
@@ -247,6 +332,7 @@ class GltfLoader {
 
   Scene load() {
     parse(readFile());
+    checkAssetVersion();
     checkRequiredExtensions();
     nodeWorldTransforms();
     loadMeshes();
@@ -255,6 +341,7 @@ class GltfLoader {
     loadCameras();
     groupTrianglesByMaterial();
     missingNormals_.flush(scene_.warnings);
+    blendMaterials_.flush(scene_.warnings);
     badNormals_.flush(scene_.warnings);
     skippedPrimitives_.flush(scene_.warnings);
     return std::move(scene_);
@@ -320,6 +407,8 @@ class GltfLoader {
     if (has("File not found") || has("File read error") || has("File is empty"))
       return "cannot load a file the glTF refers to: " + err;
     if (has("decode 'uri'")) return "invalid data URI: " + err;
+    if (has("\"asset\" object not found"))  // tinygltf says this also when only asset.version is missing
+      return "asset or asset.version is missing (a glTF 2.0 file declares \"asset\": {\"version\": \"2.0\"}): " + err;
     return "invalid glTF: " + (err.empty() ? std::string("tinygltf rejected the file") : err);
   }
 
@@ -343,12 +432,56 @@ class GltfLoader {
       err += e.what();
     }
     if (!ok) fail(explainParseError(err));
+    checkWhatTinygltfDrops(bytes, binary);
     std::istringstream lines(warn);
     for (std::string line; std::getline(lines, line);)
       if (!line.empty()) scene_.warnings.push_back("tinygltf: " + line);
   }
 
-  void checkRequiredExtensions() const {
+  // glTF 1.0 files (and any other major version) differ in structure: refuse them by name instead of
+  // rendering whatever parts happen to parse (validator: UNKNOWN_ASSET_MAJOR_VERSION).
+  void checkAssetVersion() const {
+    const std::string& version = model_.asset.version;
+    if (version.empty()) fail("asset.version is missing (a glTF 2.0 file declares \"asset\": {\"version\": \"2.0\"})");
+    const size_t dot = version.find('.');
+    const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
+    const bool wellFormed = dot != std::string::npos && dot > 0 && dot + 1 < version.size() &&
+                            std::all_of(version.begin(), version.begin() + std::ptrdiff_t(dot), digit) &&
+                            std::all_of(version.begin() + std::ptrdiff_t(dot) + 1, version.end(), digit);
+    if (!wellFormed) fail("asset.version '" + version + "' is not of the form MAJOR.MINOR");
+    const std::string major = version.substr(0, dot);
+    if (major != "2")
+      fail("asset.version is '" + version + "': this is not a glTF 2.0 file (only major version 2 is supported" +
+           (major == "1" ? "; glTF 1.0 files can be converted with a tool such as gltf-pipeline)" : ")"));
+  }
+
+  bool extensionUsed(const char* name) const {
+    return std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), name) != model_.extensionsUsed.end() ||
+           std::find(model_.extensionsRequired.begin(), model_.extensionsRequired.end(), name) !=
+               model_.extensionsRequired.end();
+  }
+
+  // tinygltf reads a node's translation/rotation/scale only when it has no matrix, so a file with both
+  // (NODE_MATRIX_TRS: which one the author meant is unknown) looks valid after parsing. The raw JSON
+  // (a .glb's JSON chunk, validated by checkGlbHeader) is read again for that.
+  void checkWhatTinygltfDrops(const std::vector<unsigned char>& bytes, bool binary) const {
+    const unsigned char* begin = bytes.data();
+    size_t size = bytes.size();
+    if (binary) {
+      size = readU32(&bytes[12]);
+      begin += 20;
+    }
+    const nlohmann::json doc = nlohmann::json::parse(begin, begin + size, nullptr, false);
+    if (!doc.is_object() || !doc.contains("nodes") || !doc["nodes"].is_array()) return;
+    const nlohmann::json& nodes = doc["nodes"];
+    for (size_t i = 0; i < nodes.size() && i < model_.nodes.size(); ++i)
+      if (nodes[i].is_object() && nodes[i].contains("matrix") &&
+          (nodes[i].contains("translation") || nodes[i].contains("rotation") || nodes[i].contains("scale")))
+        fail(nodeLabel(i) + " has both a matrix and translation/rotation/scale (glTF allows one or the other)");
+  }
+
+  void checkRequiredExtensions() {
+    meshQuantization_ = extensionUsed("KHR_mesh_quantization");
     for (const std::string& required : model_.extensionsRequired) {
       if (std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), required) !=
           std::end(kSupportedExtensions))
@@ -368,10 +501,19 @@ class GltfLoader {
   glm::dmat4 localTransform(size_t i) const {
     const tinygltf::Node& node = model_.nodes[i];
     glm::dmat4 m(1.0);
+    for (const std::vector<double>* values : {&node.matrix, &node.translation, &node.rotation, &node.scale})
+      for (double v : *values)
+        if (!fitsFloat(v))
+          fail(nodeLabel(i) + " has a transform number " + number(v) + " that is not a finite float (NaN, Inf or beyond 3.4e38)");
     if (!node.matrix.empty()) {
+      if (!node.translation.empty() || !node.rotation.empty() || !node.scale.empty())
+        fail(nodeLabel(i) + " has both a matrix and translation/rotation/scale (glTF allows one or the other)");
       if (node.matrix.size() != 16)
         fail(nodeLabel(i) + " has a matrix with " + std::to_string(node.matrix.size()) + " numbers, expected 16");
       m = glm::make_mat4(node.matrix.data());  // both column-major
+      // A node matrix must be an affine TRS: a projective bottom row would be silently dropped.
+      if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+        fail(nodeLabel(i) + " has a matrix whose last row is not (0, 0, 0, 1): not decomposable to translation/rotation/scale");
     } else {
       auto check = [&](const std::vector<double>& v, size_t n, const char* what) {
         if (!v.empty() && v.size() != n)
@@ -540,6 +682,9 @@ class GltfLoader {
     if (acc.sparse.isSparse) {
       const auto& s = acc.sparse;
       const size_t n = size_t(std::max(s.count, 0));
+      if (n > acc.count)
+        fail(what + ": the sparse substitution overrides " + std::to_string(n) + " elements, more than the accessor's " +
+             std::to_string(acc.count));
       if (!isIndexType(s.indices.componentType))
         fail(what + ": sparse indices have component type " + std::to_string(s.indices.componentType) +
              ", expected an unsigned integer type");
@@ -549,11 +694,17 @@ class GltfLoader {
                                             indexSize, &indexStride, what + " (sparse indices)");
       const unsigned char* values = locate(s.values.bufferView, size_t(std::max(s.values.byteOffset, 0)), n,
                                            elementSize, &valueStride, what + " (sparse values)");
+      std::uint32_t previous = 0;
       for (size_t k = 0; k < n; ++k) {
         const std::uint32_t target = readIndex(indices + k * indexSize, s.indices.componentType);
         if (target >= out.size())
           fail(what + ": sparse index " + std::to_string(target) + " is out of range (the accessor has " +
                std::to_string(out.size()) + " elements)");
+        // Strictly increasing (glTF): with a repeated index, which value wins would be up to the reader.
+        if (k > 0 && target <= previous)
+          fail(what + ": sparse indices are not strictly increasing (" + std::to_string(target) + " after " +
+               std::to_string(previous) + ")");
+        previous = target;
         out[target] = read(values + k * elementSize);
       }
     }
@@ -570,6 +721,10 @@ class GltfLoader {
            std::to_string(N));
     const size_t size = componentSize(acc.componentType);
     if (size == 0) fail(where + " has unsupported component type " + std::to_string(acc.componentType));
+    if (acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                           acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+      fail(where + " is normalized with component type " + componentTypeName(acc.componentType) +
+           " (only byte and short types can be normalized)");
     const int type = acc.componentType;
     const bool normalized = acc.normalized;
     return readElements<glm::vec<N, float>>(acc, N * size, where, [&](const unsigned char* p) {
@@ -586,6 +741,10 @@ class GltfLoader {
     if (acc.type != TINYGLTF_TYPE_SCALAR || !isIndexType(acc.componentType))
       fail(where + " must be SCALAR unsigned byte/short/int, got type " + std::to_string(acc.type) +
            " component type " + std::to_string(acc.componentType));
+    if (acc.bufferView >= 0 && size_t(acc.bufferView) < model_.bufferViews.size() &&
+        model_.bufferViews[acc.bufferView].byteStride != 0)
+      fail(where + ": its bufferView " + std::to_string(acc.bufferView) +
+           " has a byteStride, which index data must not have (indices are tightly packed)");
     const int type = acc.componentType;
     return readElements<std::uint32_t>(acc, componentSize(type), where,
                                        [&](const unsigned char* p) { return p ? readIndex(p, type) : 0u; });
@@ -625,10 +784,53 @@ class GltfLoader {
       fail("the scene contains no triangles to render (" + std::to_string(model_.meshes.size()) + " meshes, " +
            std::to_string(primitives) + " primitives, " + std::to_string(drawOrder_.size()) + " nodes in the scene)");
     }
+    chooseSceneOrigin();
   }
 
-  // Transforms one primitive to world space and appends its vertices (only those its triangles
-  // use) and triangles (to its material's bucket).
+  // Reads vertex attribute `name` after checking its accessor format against the specification
+  // (and KHR_mesh_quantization), its element count against POSITION's, and every value for NaN/Inf.
+  template <int N>
+  std::vector<glm::vec<N, float>> readAttribute(int accessorIndex, const std::string& name, const std::string& what,
+                                                size_t expectedCount) const {
+    const std::string where = what + " " + name;
+    const tinygltf::Accessor& acc = accessor(accessorIndex, where);
+    if (!allowedFormat(name, {acc.type, acc.componentType, acc.normalized}, meshQuantization_))
+      fail(where + " (accessor " + std::to_string(accessorIndex) + ") is " + typeName(acc.type) + " " +
+           (acc.normalized ? "normalized " : "") + componentTypeName(acc.componentType) + "; glTF allows " +
+           allowedFormatsText(name, meshQuantization_));
+    std::vector<glm::vec<N, float>> values = readAccessor<N>(accessorIndex, where);
+    if (expectedCount != size_t(-1) && values.size() != expectedCount)
+      fail(what + ": " + name + " has " + std::to_string(values.size()) + " elements but POSITION has " +
+           std::to_string(expectedCount));
+    for (size_t v = 0; v < values.size(); ++v)
+      if (!finiteVec(values[v]))
+        fail(what + ": " + name + " of vertex " + std::to_string(v) + " is not finite (NaN or Inf)");
+    return values;
+  }
+
+  // COLOR_0 as RGBA (VEC3 gets alpha 1).
+  std::vector<glm::vec4> readColors(int accessorIndex, const std::string& what, size_t expectedCount) const {
+    const tinygltf::Accessor& acc = accessor(accessorIndex, what + " COLOR_0");
+    if (acc.type == TINYGLTF_TYPE_VEC4) return readAttribute<4>(accessorIndex, "COLOR_0", what, expectedCount);
+    if (acc.type != TINYGLTF_TYPE_VEC3)  // let readAttribute word the error
+      return readAttribute<4>(accessorIndex, "COLOR_0", what, expectedCount);
+    const std::vector<glm::vec3> rgb = readAttribute<3>(accessorIndex, "COLOR_0", what, expectedCount);
+    std::vector<glm::vec4> rgba(rgb.size());
+    for (size_t i = 0; i < rgb.size(); ++i) rgba[i] = glm::vec4(rgb[i], 1.0f);
+    return rgba;
+  }
+
+  // The TEXCOORD set a texture reads: textureInfo.texCoord, overridden by KHR_texture_transform.texCoord.
+  static int effectiveTexCoord(const tinygltf::TextureInfo& info) {
+    const auto ext = info.extensions.find("KHR_texture_transform");
+    if (ext != info.extensions.end() && ext->second.IsObject() && ext->second.Has("texCoord") &&
+        ext->second.Get("texCoord").IsNumber())
+      return ext->second.Get("texCoord").GetNumberAsInt();
+    return info.texCoord;
+  }
+
+  // Transforms one primitive to world space (double) and appends its vertices (only those its
+  // triangles use) and triangles (to its material's bucket).
   void appendPrimitive(const tinygltf::Primitive& prim, const std::string& what, const glm::dmat4& world) {
     if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) {
       skippedPrimitives_.add(what);
@@ -644,10 +846,7 @@ class GltfLoader {
     const int positionAccessor = attribute("POSITION");
     if (positionAccessor < 0) fail(what + " has no POSITION attribute");
 
-    const std::vector<glm::vec3> positions = readAccessor<3>(positionAccessor, what + " POSITION");
-    for (size_t v = 0; v < positions.size(); ++v)
-      if (!finite(positions[v]))
-        fail(what + ": POSITION of vertex " + std::to_string(v) + " is not finite (NaN or Inf)");
+    const std::vector<glm::vec3> positions = readAttribute<3>(positionAccessor, "POSITION", what, size_t(-1));
     const size_t vertexCount = positions.size();
 
     std::vector<std::uint32_t> indices;
@@ -668,20 +867,28 @@ class GltfLoader {
     if (tris.empty()) return;
 
     std::vector<glm::vec3> normals;
-    std::vector<glm::vec2> texcoords;
-    if (const int a = attribute("NORMAL"); a >= 0) {
-      normals = readAccessor<3>(a, what + " NORMAL");
-      if (normals.size() != vertexCount)
-        fail(what + ": NORMAL has " + std::to_string(normals.size()) + " elements but POSITION has " +
-             std::to_string(vertexCount));
-    } else {
+    std::vector<glm::vec2> texcoords[2];
+    std::vector<glm::vec4> colors;
+    if (const int a = attribute("NORMAL"); a >= 0)
+      normals = readAttribute<3>(a, "NORMAL", what, vertexCount);
+    else
       missingNormals_.add(what);
-    }
-    if (const int a = attribute("TEXCOORD_0"); a >= 0) {
-      texcoords = readAccessor<2>(a, what + " TEXCOORD_0");
-      if (texcoords.size() != vertexCount)
-        fail(what + ": TEXCOORD_0 has " + std::to_string(texcoords.size()) + " elements but POSITION has " +
-             std::to_string(vertexCount));
+    if (const int a = attribute("TEXCOORD_0"); a >= 0) texcoords[0] = readAttribute<2>(a, "TEXCOORD_0", what, vertexCount);
+    if (const int a = attribute("TEXCOORD_1"); a >= 0) texcoords[1] = readAttribute<2>(a, "TEXCOORD_1", what, vertexCount);
+    if (const int a = attribute("COLOR_0"); a >= 0) colors = readColors(a, what, vertexCount);
+    // A texture whose TEXCOORD set the primitive lacks would sample one texel everywhere
+    // (validator: MESH_PRIMITIVE_TOO_FEW_TEXCOORDS).
+    if (prim.material >= 0) {
+      const tinygltf::Material& m = model_.materials[size_t(prim.material)];
+      const std::pair<const tinygltf::TextureInfo*, const char*> slots[] = {
+          {&m.pbrMetallicRoughness.baseColorTexture, "base colour"}, {&m.emissiveTexture, "emissive"}};
+      for (const auto& [info, slot] : slots) {
+        const int set = effectiveTexCoord(*info);
+        if (info->index < 0 || set < 0 || set > 1) continue;  // sets >= 2 are ignored with a warning later
+        if (texcoords[set].empty())
+          fail(what + ": its material " + label("material", size_t(prim.material), m.name) + " has a " + slot +
+               " texture that reads TEXCOORD_" + std::to_string(set) + ", which the primitive does not have");
+      }
     }
 
     // A mirroring transform turns counter-clockwise triangles clockwise: swap two corners so the
@@ -691,16 +898,25 @@ class GltfLoader {
       for (size_t t = 0; t < tris.size(); t += 3) std::swap(tris[t + 1], tris[t + 2]);
     // Normals transform by the inverse transpose (non-uniform scale), then are renormalised.
     const glm::mat3 normalMatrix(glm::inverseTranspose(glm::dmat3(world)));
-    const glm::mat4 worldF(world);
 
-    std::vector<glm::vec3> worldPositions(vertexCount);
+    // World positions stay in double until the scene origin is known (loadMeshes): a scene far from
+    // the origin keeps its vertices' relative precision.
+    std::vector<glm::dvec3> worldPositions(vertexCount);
     for (size_t v = 0; v < vertexCount; ++v) {
-      worldPositions[v] = glm::vec3(worldF * glm::vec4(positions[v], 1.0f));
-      if (!finite(worldPositions[v]))
-        fail(what + ": POSITION of vertex " + std::to_string(v) +
-             " is not finite (NaN or Inf) after the node transform");
+      worldPositions[v] = glm::dvec3(world * glm::dvec4(glm::dvec3(positions[v]), 1.0));
+      for (int c = 0; c < 3; ++c)
+        if (!fitsFloat(worldPositions[v][c]))
+          fail(what + ": POSITION of vertex " + std::to_string(v) +
+               " is not finite (NaN or Inf) after the node transform, or beyond float range");
     }
 
+    const auto emitVertex = [&](std::uint32_t v, const glm::vec3& n) {
+      worldPositions_.push_back(worldPositions[v]);
+      scene_.normals.push_back(n);
+      scene_.texcoords.push_back(texcoords[0].empty() ? glm::vec2(0.0f) : texcoords[0][v]);
+      scene_.texcoords1.push_back(texcoords[1].empty() ? glm::vec2(0.0f) : texcoords[1][v]);
+      scene_.colors.push_back(colors.empty() ? glm::vec4(1.0f) : colors[v]);
+    };
     std::vector<std::uint32_t>& bucket = trianglesFor(material);
     const glm::vec3 up(0.0f, 1.0f, 0.0f);  // normal of zero-area triangles: any unit vector, never NaN
     if (normals.empty()) {
@@ -710,10 +926,8 @@ class GltfLoader {
         const glm::vec3 n =
             faceNormal(worldPositions[tris[t]], worldPositions[tris[t + 1]], worldPositions[tris[t + 2]], up);
         for (int c = 0; c < 3; ++c) {
-          bucket.push_back(std::uint32_t(scene_.positions.size()));
-          scene_.positions.push_back(worldPositions[tris[t + c]]);
-          scene_.normals.push_back(n);
-          scene_.texcoords.push_back(texcoords.empty() ? glm::vec2(0.0f) : texcoords[tris[t + c]]);
+          bucket.push_back(std::uint32_t(worldPositions_.size()));
+          emitVertex(tris[t + c], n);
         }
       }
     } else {
@@ -723,24 +937,45 @@ class GltfLoader {
         for (int c = 0; c < 3; ++c) {
           const std::uint32_t v = tris[t + c];
           if (remap[v] == std::numeric_limits<std::uint32_t>::max()) {
-            remap[v] = std::uint32_t(scene_.positions.size());
+            remap[v] = std::uint32_t(worldPositions_.size());
             glm::vec3 n = normalMatrix * normals[v];
             const float length = glm::length(n);
             if (length > 0.0f && std::isfinite(length)) {
               n /= length;
-            } else {  // zero or NaN normal in the file: use the face's
+            } else {  // zero normal in the file: use the face's
               badNormals_.add(what);
               n = faceNormal(worldPositions[tris[t]], worldPositions[tris[t + 1]], worldPositions[tris[t + 2]], up);
             }
-            scene_.positions.push_back(worldPositions[v]);
-            scene_.normals.push_back(n);
-            scene_.texcoords.push_back(texcoords.empty() ? glm::vec2(0.0f) : texcoords[v]);
+            emitVertex(v, n);
           }
           bucket.push_back(remap[v]);
         }
       }
     }
     triangleCount_ += tris.size() / 3;
+  }
+
+  // Scene space: world space shifted by an origin near the geometry, computed in double. Every later
+  // float (vertices, lights, cameras, the BVH, VPLs, the hierarchy, G-buffer positions) is then
+  // relative to the scene, so its precision does not depend on where the file put the scene. The
+  // origin is the centre of the bounds snapped to a grid of g = the next power of two above the
+  // bounds' diagonal: a scene near the world origin (|centre| < g / 2, most files) keeps origin 0 and
+  // its world coordinates, and scene-space coordinates never exceed about 1.4 g anywhere.
+  void chooseSceneOrigin() {
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const glm::dvec3& p : worldPositions_) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    scene_.origin = glm::dvec3(0.0);
+    if (!worldPositions_.empty()) {
+      const double grid = std::exp2(std::ceil(std::log2(std::max(glm::length(hi - lo), 1e-30))));
+      scene_.origin = glm::round(0.5 * (lo + hi) / grid) * grid;
+    }
+    scene_.positions.resize(worldPositions_.size());
+    for (size_t i = 0; i < worldPositions_.size(); ++i) scene_.positions[i] = glm::vec3(worldPositions_[i] - scene_.origin);
+    worldPositions_.clear();
+    worldPositions_.shrink_to_fit();
   }
 
   std::vector<std::uint32_t>& trianglesFor(std::uint32_t material) {
@@ -757,18 +992,39 @@ class GltfLoader {
       const tinygltf::Material& src = model_.materials[i];
       Material& dst = scene_.materials[i];
       dst.name = src.name.empty() ? "material " + std::to_string(i) : src.name;
+      const std::string what = label("material", i, src.name);
       const auto& bc = src.pbrMetallicRoughness.baseColorFactor;
-      if (bc.size() == 4) dst.baseColorFactor = glm::vec4(bc[0], bc[1], bc[2], bc[3]);
+      if (bc.size() != 4) fail(what + " has a baseColorFactor that is not 4 numbers");
+      for (double c : bc)
+        if (!(c >= 0.0 && c <= 1.0))
+          fail(what + " has a baseColorFactor component " + number(c) + " outside [0, 1]");
+      dst.baseColorFactor = glm::vec4(bc[0], bc[1], bc[2], bc[3]);
       glm::vec3 emissive(0.0f);
       if (src.emissiveFactor.size() == 3)
         emissive = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
       else if (!src.emissiveFactor.empty())
-        fail(label("material", i, src.name) + " has an emissiveFactor that is not 3 numbers");
+        fail(what + " has an emissiveFactor that is not 3 numbers");
+      for (double c : src.emissiveFactor)
+        if (!(c >= 0.0 && c <= 1.0)) fail(what + " has an emissiveFactor component " + number(c) + " outside [0, 1]");
+      if (src.alphaMode == "OPAQUE") {
+        dst.alphaMode = AlphaMode::Opaque;
+      } else if (src.alphaMode == "MASK") {
+        dst.alphaMode = AlphaMode::Mask;
+      } else if (src.alphaMode == "BLEND") {
+        dst.alphaMode = AlphaMode::Blend;
+        blendMaterials_.add(dst.name);
+      } else {
+        fail(what + " has alphaMode '" + src.alphaMode + "' (expected OPAQUE, MASK or BLEND)");
+      }
+      if (!(src.alphaCutoff >= 0.0) || !fitsFloat(src.alphaCutoff))
+        fail(what + " has alphaCutoff " + number(src.alphaCutoff) + " (must be a finite number >= 0)");
+      dst.alphaCutoff = float(src.alphaCutoff);
+      dst.doubleSided = src.doubleSided;
       // KHR_materials_emissive_strength scales emissiveFactor (glTF caps the factor at 1).
       const auto ext = src.extensions.find("KHR_materials_emissive_strength");
       if (ext != src.extensions.end() && ext->second.Has("emissiveStrength")) {
         const tinygltf::Value& strength = ext->second.Get("emissiveStrength");
-        if (!strength.IsNumber() || !(strength.GetNumberAsDouble() >= 0.0))
+        if (!strength.IsNumber() || !(strength.GetNumberAsDouble() >= 0.0) || !fitsFloat(strength.GetNumberAsDouble()))
           fail(label("material", i, src.name) +
                ": KHR_materials_emissive_strength.emissiveStrength must be a number >= 0");
         emissive *= float(strength.GetNumberAsDouble());
@@ -780,6 +1036,10 @@ class GltfLoader {
       if (i < trianglesByMaterial_.size() && !trianglesByMaterial_[i].empty()) {
         dst.baseColorTexture = textureFor(src.pbrMetallicRoughness.baseColorTexture, dst.name, "base colour");
         dst.emissiveTexture = textureFor(src.emissiveTexture, dst.name, "emissive");
+        dst.baseColorTexCoord = effectiveTexCoord(src.pbrMetallicRoughness.baseColorTexture);
+        dst.emissiveTexCoord = effectiveTexCoord(src.emissiveTexture);
+        dst.baseColorUvTransform = uvTransform(src.pbrMetallicRoughness.baseColorTexture, what + " base colour texture");
+        dst.emissiveUvTransform = uvTransform(src.emissiveTexture, what + " emissive texture");
       }
     }
     if (defaultMaterial_ >= 0 || scene_.materials.empty()) {
@@ -792,6 +1052,34 @@ class GltfLoader {
     }
   }
 
+  // KHR_texture_transform of a texture slot as a 3x3 matrix on (u, v, 1): translation * rotation *
+  // scale, rotation counter-clockwise by `rotation` radians (the extension's definition).
+  glm::mat3 uvTransform(const tinygltf::TextureInfo& info, const std::string& what) const {
+    const auto ext = info.extensions.find("KHR_texture_transform");
+    if (info.index < 0 || ext == info.extensions.end()) return glm::mat3(1.0f);
+    const tinygltf::Value& t = ext->second;
+    const auto vec2 = [&](const char* key, glm::dvec2 fallback) {
+      if (!t.Has(key)) return fallback;
+      const tinygltf::Value& v = t.Get(key);
+      if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+        fail(what + ": KHR_texture_transform." + key + " must be 2 numbers");
+      return glm::dvec2(v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble());
+    };
+    const glm::dvec2 offset = vec2("offset", glm::dvec2(0.0)), scale = vec2("scale", glm::dvec2(1.0));
+    double rotation = 0.0;
+    if (t.Has("rotation")) {
+      if (!t.Get("rotation").IsNumber()) fail(what + ": KHR_texture_transform.rotation must be a number");
+      rotation = t.Get("rotation").GetNumberAsDouble();
+    }
+    for (double v : {offset.x, offset.y, scale.x, scale.y, rotation})
+      if (!fitsFloat(v)) fail(what + ": KHR_texture_transform has a non-finite number " + number(v));
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    // Columns of translation * rotation * scale (column-major, as GLSL's mat3).
+    return glm::mat3(glm::vec3(float(c * scale.x), float(s * scale.x), 0.0f),
+                     glm::vec3(float(-s * scale.y), float(c * scale.y), 0.0f),
+                     glm::vec3(float(offset.x), float(offset.y), 1.0f));
+  }
+
   // Index into scene_.textures for a material's texture slot, -1 when absent or unusable (with
   // a warning: a missing texture costs detail, not the scene).
   int textureFor(const tinygltf::TextureInfo& info, const std::string& material, const char* slot) {
@@ -799,10 +1087,12 @@ class GltfLoader {
     if (size_t(info.index) >= model_.textures.size())
       fail("material '" + material + "' " + slot + " texture refers to texture " + std::to_string(info.index) +
            ", but the file has " + std::to_string(model_.textures.size()) + " textures");
-    if (info.texCoord != 0) {
+    const int texCoord = effectiveTexCoord(info);
+    if (texCoord < 0) fail("material '" + material + "' " + slot + " texture has a negative texCoord");
+    if (texCoord > 1) {
       scene_.warnings.push_back("material '" + material + "': " + slot + " texture uses TEXCOORD_" +
-                                std::to_string(info.texCoord) +
-                                "; only TEXCOORD_0 is loaded, so the texture is ignored");
+                                std::to_string(texCoord) +
+                                "; only TEXCOORD_0 and TEXCOORD_1 are loaded, so the texture is ignored");
       return -1;
     }
     const int source = model_.textures[info.index].source;
@@ -868,7 +1158,13 @@ class GltfLoader {
   // ---------------------------------------------------------------------------------------------
   // Lights and cameras
 
-  glm::vec3 worldPosition(int node) const { return glm::vec3(world_[node][3]); }
+  // A node's position in scene space (world minus the scene origin, in double, then float).
+  glm::vec3 worldPosition(int node) const {
+    const glm::dvec3 world(world_[node][3]);
+    for (int c = 0; c < 3; ++c)
+      if (!fitsFloat(world[c])) fail(nodeLabel(size_t(node)) + " has a position beyond float range");
+    return glm::vec3(world - scene_.origin);
+  }
 
   // The node's -Z axis in world space (lights and cameras look down their local -Z).
   glm::vec3 worldForward(int node) const {
@@ -915,10 +1211,13 @@ class GltfLoader {
     else if (!src.color.empty())
       fail(what + " has a color that is not 3 numbers");
     if (!finite(color) || glm::any(glm::lessThan(color, glm::vec3(0.0f))) || !(src.intensity >= 0.0) ||
-        !std::isfinite(src.intensity))
+        !fitsFloat(src.intensity) || !finite(color * float(src.intensity)))
       fail(what + " has a negative or non-finite color or intensity");
     light.intensity = color * float(src.intensity);
-    light.range = std::isfinite(src.range) && src.range > 0.0 ? float(src.range) : 0.0f;
+    // tinygltf stores an absent range as 0; a range given in the file must be > 0 (and a float).
+    if (src.range != 0.0 && (!(src.range > 0.0) || !fitsFloat(src.range)))
+      fail(what + " has range " + number(src.range) + " (must be a finite number > 0, or absent for infinite)");
+    light.range = float(src.range);
     light.position = worldPosition(nodeIndex);
     light.direction = worldForward(nodeIndex);
     if (light.type == LightType::Spot) {
@@ -952,6 +1251,13 @@ class GltfLoader {
       const auto& p = src.perspective;
       if (!(p.yfov > 0.0 && p.yfov < 3.14159))
         fail(what + " has yfov " + std::to_string(p.yfov) + ", expected 0 < yfov < pi");
+      if (!(p.znear > 0.0) || !fitsFloat(p.znear))
+        fail(what + " has znear " + number(p.znear) + " (must be a finite number > 0)");
+      // zfar 0 is tinygltf's "absent" (an infinite projection); a given zfar must exceed znear.
+      if (p.zfar != 0.0 && (!(p.zfar > p.znear) || !fitsFloat(p.zfar)))
+        fail(what + " has zfar " + number(p.zfar) + " not greater than znear " + number(p.znear));
+      if (p.aspectRatio != 0.0 && (!(p.aspectRatio > 0.0) || !fitsFloat(p.aspectRatio)))
+        fail(what + " has aspectRatio " + number(p.aspectRatio) + " (must be a finite number > 0)");
       Camera camera;
       camera.name = !src.name.empty() ? src.name : !node.name.empty() ? node.name : what;
       camera.position = worldPosition(nodeIndex);
@@ -965,8 +1271,9 @@ class GltfLoader {
       camera.orientation = glm::mat3(glm::vec3(glm::cross(up, back)), glm::vec3(up), glm::vec3(back));
       camera.yfov = float(p.yfov);
       camera.aspectRatio = p.aspectRatio > 0.0 ? float(p.aspectRatio) : 0.0f;
-      if (p.znear > 0.0) camera.znear = float(p.znear);
-      if (p.zfar > p.znear && p.zfar > 0.0) camera.zfar = float(p.zfar);  // 0 / absent: infinite → default
+      camera.znear = float(p.znear);
+      // Absent zfar: infinite. Reversed Z keeps depth precision for any far plane, so a huge one stands in.
+      camera.zfar = p.zfar > 0.0 ? float(p.zfar) : std::numeric_limits<float>::max();
       scene_.cameras.push_back(camera);
     }
     for (size_t i = 0; i < used.size(); ++i)
@@ -1005,6 +1312,8 @@ class GltfLoader {
   tinygltf::Model model_;
   Scene scene_;
   std::vector<glm::dmat4> world_;  // per node; identity for nodes outside the displayed scene
+  std::vector<glm::dvec3> worldPositions_;  // vertices in world space until chooseSceneOrigin()
+  bool meshQuantization_ = false;  // KHR_mesh_quantization used: more attribute formats allowed
   std::vector<int> drawOrder_;     // nodes of the displayed scene, depth first
   std::vector<std::vector<std::uint32_t>> trianglesByMaterial_;
   size_t triangleCount_ = 0;
@@ -1012,6 +1321,7 @@ class GltfLoader {
   std::vector<int> imageTexture_;  // image → texture index, -1 failed, kNotDecoded
   WarningGroup missingNormals_{"primitives without NORMAL: flat face normals generated"};
   WarningGroup badNormals_{"zero or non-finite vertex normals replaced by face normals"};
+  WarningGroup blendMaterials_{"alphaMode BLEND is rendered opaque (one surface per pixel in a deferred renderer)"};
   WarningGroup skippedPrimitives_{"point/line primitives (or trailing indices of triangle lists) skipped"};
 };
 

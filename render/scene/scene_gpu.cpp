@@ -25,6 +25,24 @@ gpu::GpuPunctualLight toGpu(const PunctualLight& light) {
   return g;
 }
 
+gpu::GpuMaterial toGpu(const Material& m) {
+  gpu::GpuMaterial g{};
+  g.baseColorFactor = m.baseColorFactor;
+  g.emission = m.emission;
+  g.baseColorTexture = m.baseColorTexture;
+  g.emissiveTexture = m.emissiveTexture;
+  g.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
+  g.baseColorTexCoord = std::uint32_t(m.baseColorTexCoord);
+  g.emissiveTexCoord = std::uint32_t(m.emissiveTexCoord);
+  // Rows of the 2x3 affine part of the 3x3 uv transform (glm is column-major: M[column][row]).
+  const auto row = [](const glm::mat3& t, int r) { return glm::vec4(t[0][r], t[1][r], t[2][r], 0.0f); };
+  g.baseColorUvRow0 = row(m.baseColorUvTransform, 0);
+  g.baseColorUvRow1 = row(m.baseColorUvTransform, 1);
+  g.emissiveUvRow0 = row(m.emissiveUvTransform, 0);
+  g.emissiveUvRow1 = row(m.emissiveUvTransform, 1);
+  return g;
+}
+
 gl::Texture2D uploadTexture(const Texture& texture) {
   const int levels = 1 + int(std::floor(std::log2(float(std::max(texture.width, texture.height)))));
   // Colour textures are sRGB-encoded in glTF; the sampler decodes them to linear.
@@ -65,9 +83,16 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   bvh_ = buildBvh(scene.positions, scene.indices);
   bvhBuildMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
+  // Alpha-masked triangles are marked in the BVH so that traversal tests alpha only where it can matter.
+  for (gpu::BvhTriangle& t : bvh_.triangles)
+    if (scene.materials[scene.triangleMaterials[t.sceneTriangle]].alphaMode == AlphaMode::Mask)
+      t.flags |= gpu::kBvhTriangleAlphaMasked;
+
   positions_ = gl::Buffer::fromVector(scene.positions, 0);
   normals_ = gl::Buffer::fromVector(scene.normals, 0);
   texcoords_ = gl::Buffer::fromVector(scene.texcoords, 0);
+  texcoords1_ = gl::Buffer::fromVector(scene.texcoords1, 0);
+  colors_ = gl::Buffer::fromVector(scene.colors, 0);
   indices_ = gl::Buffer::fromVector(scene.indices, 0);
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
@@ -76,8 +101,9 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
     const gl::Buffer& buffer;
     GLint components;
   };
-  const Stream streams[] = {{positions_, 3}, {normals_, 3}, {texcoords_, 2}};
-  for (GLuint i = 0; i < 3; ++i) {
+  // Locations as in glsl/gbuffer.vert.
+  const Stream streams[] = {{positions_, 3}, {normals_, 3}, {texcoords_, 2}, {texcoords1_, 2}, {colors_, 4}};
+  for (GLuint i = 0; i < 5; ++i) {
     glVertexArrayVertexBuffer(vao, i, streams[i].buffer.id(), 0, GLsizei(streams[i].components * sizeof(float)));
     glEnableVertexArrayAttrib(vao, i);
     glVertexArrayAttribFormat(vao, i, streams[i].components, GL_FLOAT, GL_FALSE, 0);
@@ -85,8 +111,7 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   }
   glVertexArrayElementBuffer(vao, indices_.id());
 
-  for (const Material& m : scene.materials)
-    materials_.push_back({m.baseColorFactor, m.emission, m.baseColorTexture, m.emissiveTexture, 0, 0, 0});
+  for (const Material& m : scene.materials) materials_.push_back(toGpu(m));
   sceneLights_ = scene.lights;
   for (const PunctualLight& l : scene.lights) lights_.push_back(toGpu(l));
   bvhNodes_ = gl::Buffer::fromVector(bvh_.nodes, 0);
@@ -97,9 +122,13 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   std::vector<gpu::GpuSceneTriangle> triangles(scene.triangleCount());
   for (size_t t = 0; t < triangles.size(); ++t) {
     const std::uint32_t* i = &scene.indices[3 * t];
-    triangles[t] = {scene.triangleMaterials[t], 0, scene.texcoords[i[0]], scene.texcoords[i[1]], scene.texcoords[i[2]]};
+    triangles[t] = {scene.triangleMaterials[t], i[0], i[1], i[2]};
   }
   sceneTriangles_ = gl::Buffer::fromVector(triangles, 0);
+  std::vector<gpu::GpuSceneVertex> vertices(scene.positions.size());
+  for (size_t v = 0; v < vertices.size(); ++v)
+    vertices[v] = {glm::vec4(scene.texcoords[v], scene.texcoords1[v]), scene.colors[v]};
+  sceneVertices_ = gl::Buffer::fromVector(vertices, 0);
   std::vector<gpu::GpuTextureInfo> infos;
   std::vector<std::uint32_t> texels;
   packTexels(scene, infos, texels);
@@ -119,6 +148,7 @@ void SceneGpu::bindForCompute() const {
   materialBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_MATERIALS);
   lightBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PUNCTUAL_LIGHTS);
   sceneTriangles_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_SCENE_TRIANGLES);
+  sceneVertices_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_SCENE_VERTICES);
   textureInfos_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_TEXTURE_INFOS);
   texels_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_TEXELS);
 }

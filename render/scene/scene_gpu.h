@@ -40,6 +40,7 @@ class SceneGpu {
   const Scene& scene() const { return scene_; }
   const Bvh& bvh() const { return bvh_; }
   const std::vector<gpu::GpuPunctualLight>& punctualLights() const { return lights_; }
+  const std::vector<gpu::GpuMaterial>& materials() const { return materials_; }
   // The punctual lights as loaded, or as last set; the same order as punctualLights().
   const std::vector<PunctualLight>& lights() const { return sceneLights_; }
   // Replaces light `index` (throws std::out_of_range) and re-uploads the light buffer.
@@ -55,10 +56,10 @@ class SceneGpu {
   std::vector<PunctualLight> sceneLights_;
   std::vector<gpu::GpuPunctualLight> lights_;
   unsigned lightsVersion_ = 0;
-  gl::Buffer positions_, normals_, texcoords_, indices_;
+  gl::Buffer positions_, normals_, texcoords_, texcoords1_, colors_, indices_;
   gl::VertexArrayHandle vertexArray_;
   gl::Buffer bvhNodes_, bvhTriangles_, materialBuffer_, lightBuffer_;
-  gl::Buffer sceneTriangles_, textureInfos_, texels_;  // for compute shaders at ray hits
+  gl::Buffer sceneTriangles_, sceneVertices_, textureInfos_, texels_;  // for compute shaders at ray hits
   std::vector<gl::Texture2D> textures_;
   gl::Texture2D white_;
 };

@@ -113,13 +113,44 @@ int GltfWriter::addMesh(const std::vector<PrimitiveDesc>& primitives, const std:
       const int view = addBufferView(data.data(), data.size() * 4, 24);
       attributes["POSITION"] = addAccessor(view, gltf::kFloat, n, "VEC3");
       attributes["NORMAL"] = addAccessor(view, gltf::kFloat, n, "VEC3", false, 12);
+    } else if (p.positionType == gltf::kShort) {
+      // 6 bytes per element, padded to 8: vertex strides must be multiples of 4.
+      std::vector<std::uint8_t> data;
+      std::vector<glm::vec3> stored;
+      for (const glm::vec3& v : p.positions) {
+        const glm::vec3 q = glm::round(p.positionNormalized ? v * 32767.0f : v);
+        for (int c = 0; c < 3; ++c) append(data, std::int16_t(q[c]));
+        append(data, std::int16_t(0));
+        stored.push_back(q);
+      }
+      attributes["POSITION"] =
+          addAccessor(addBufferView(data.data(), data.size(), 8), gltf::kShort, n, "VEC3", p.positionNormalized);
+      addBounds(accessors_[attributes["POSITION"].get<int>()], stored);
     } else {
       attributes["POSITION"] = addAccessor(addBufferView(p.positions.data(), n * 12), gltf::kFloat, n, "VEC3");
-      if (!p.normals.empty())
+    }
+    if (!p.interleaved && !p.normals.empty()) {
+      if (p.normalType == gltf::kByte) {
+        std::vector<std::uint8_t> data;
+        for (const glm::vec3& v : p.normals) {
+          for (int c = 0; c < 3; ++c) data.push_back(std::uint8_t(std::int8_t(std::lround(v[c] * 127.0f))));
+          data.push_back(0);
+        }
+        attributes["NORMAL"] =
+            addAccessor(addBufferView(data.data(), data.size(), 4), gltf::kByte, p.normals.size(), "VEC3", true);
+      } else {
         attributes["NORMAL"] =
             addAccessor(addBufferView(p.normals.data(), p.normals.size() * 12), gltf::kFloat, p.normals.size(), "VEC3");
+      }
     }
-    addBounds(accessors_[attributes["POSITION"].get<int>()], p.positions);
+    if (p.positionType == gltf::kFloat) addBounds(accessors_[attributes["POSITION"].get<int>()], p.positions);
+    if (p.positionType != gltf::kFloat || p.normalType != gltf::kFloat) useExtension("KHR_mesh_quantization");
+    if (!p.texcoords1.empty())
+      attributes["TEXCOORD_1"] = addAccessor(addBufferView(p.texcoords1.data(), p.texcoords1.size() * 8), gltf::kFloat,
+                                             p.texcoords1.size(), "VEC2");
+    if (!p.colors.empty())
+      attributes["COLOR_0"] =
+          addAccessor(addBufferView(p.colors.data(), p.colors.size() * 16), gltf::kFloat, p.colors.size(), "VEC4");
     if (!p.texcoords.empty()) {
       const size_t m = p.texcoords.size();
       std::vector<std::uint8_t> data;
@@ -171,7 +202,14 @@ int GltfWriter::addMaterial(const MaterialDesc& m) {
     material["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", m.baseColorTexture}};
     if (m.baseColorTexCoord != 0)
       material["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = m.baseColorTexCoord;
+    if (!m.baseColorTransform.is_null()) {
+      material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = m.baseColorTransform;
+      useExtension("KHR_texture_transform");
+    }
   }
+  if (!m.alphaMode.empty()) material["alphaMode"] = m.alphaMode;
+  if (m.alphaCutoff >= 0.0) material["alphaCutoff"] = m.alphaCutoff;
+  if (m.doubleSided) material["doubleSided"] = true;
   if (m.emissive != glm::vec3(0.0f)) material["emissiveFactor"] = {m.emissive.r, m.emissive.g, m.emissive.b};
   if (m.emissiveTexture >= 0) material["emissiveTexture"] = {{"index", m.emissiveTexture}};
   if (m.emissiveStrength >= 0.0f)
@@ -216,7 +254,8 @@ int GltfWriter::addCamera(const CameraDesc& c) {
   if (c.type == "orthographic") {
     camera["orthographic"] = {{"xmag", 1.0}, {"ymag", 1.0}, {"znear", c.znear}, {"zfar", c.zfar}};
   } else {
-    camera["perspective"] = {{"yfov", c.yfov}, {"znear", c.znear}, {"zfar", c.zfar}};
+    camera["perspective"] = {{"yfov", c.yfov}, {"znear", c.znear}};
+    if (c.zfar > 0.0) camera["perspective"]["zfar"] = c.zfar;  // absent: an infinite projection
     if (c.aspectRatio > 0.0) camera["perspective"]["aspectRatio"] = c.aspectRatio;
   }
   cameras_.push_back(camera);
@@ -233,7 +272,7 @@ int GltfWriter::addNode(const NodeDesc& n) {
   if (!n.matrix.empty()) {
     node["matrix"] = n.matrix;
   } else {
-    if (n.translation != glm::vec3(0.0f)) node["translation"] = {n.translation.x, n.translation.y, n.translation.z};
+    if (n.translation != glm::dvec3(0.0)) node["translation"] = {n.translation.x, n.translation.y, n.translation.z};
     if (n.rotation != glm::quat(1.0f, 0.0f, 0.0f, 0.0f))
       node["rotation"] = {n.rotation.x, n.rotation.y, n.rotation.z, n.rotation.w};
     if (n.scale != glm::vec3(1.0f)) node["scale"] = {n.scale.x, n.scale.y, n.scale.z};
@@ -282,8 +321,9 @@ Json GltfWriter::json(const std::string& bufferUri) const {
       used.push_back("KHR_materials_emissive_strength");
       break;
     }
-  for (const std::string& e : extensionsRequired_)
-    if (std::find(used.begin(), used.end(), e) == used.end()) used.push_back(e);
+  for (const std::vector<std::string>* list : {&extensionsUsed_, &extensionsRequired_})
+    for (const std::string& e : *list)
+      if (std::find(used.begin(), used.end(), e) == used.end()) used.push_back(e);
   if (!used.empty()) doc["extensionsUsed"] = used;
   if (!extensionsRequired_.empty()) doc["extensionsRequired"] = extensionsRequired_;
   return doc;

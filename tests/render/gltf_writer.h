@@ -45,6 +45,13 @@ struct PrimitiveDesc {
   int indexType = gltf::kUnsignedInt;  // kUnsignedByte / kUnsignedShort / kUnsignedInt
   int texcoordType = gltf::kFloat;     // kFloat, or normalized kUnsignedByte / kUnsignedShort
   bool interleaved = false;            // POSITION + NORMAL in one bufferView with byteStride 24
+  std::vector<glm::vec2> texcoords1;   // empty: no TEXCOORD_1 (float)
+  std::vector<glm::vec4> colors;       // empty: no COLOR_0 (float VEC4)
+  // KHR_mesh_quantization: POSITION as kShort (normalized: p * 32767; else rounded integers) and
+  // NORMAL as normalized kByte; the writer declares the extension when a primitive uses it.
+  int positionType = gltf::kFloat;
+  bool positionNormalized = false;
+  int normalType = gltf::kFloat;
 };
 
 struct MaterialDesc {
@@ -55,6 +62,10 @@ struct MaterialDesc {
   int baseColorTexture = -1;       // texture index
   int emissiveTexture = -1;
   int baseColorTexCoord = 0;
+  std::string alphaMode;                 // empty: omitted (OPAQUE)
+  double alphaCutoff = -1.0;             // < 0: omitted (0.5)
+  bool doubleSided = false;
+  nlohmann::json baseColorTransform;     // KHR_texture_transform object on the base colour texture; null: none
 
   MaterialDesc& named(std::string n) {
     name = std::move(n);
@@ -72,6 +83,19 @@ struct MaterialDesc {
   MaterialDesc& withBaseColorTexture(int texture, int texCoord = 0) {
     baseColorTexture = texture;
     baseColorTexCoord = texCoord;
+    return *this;
+  }
+  MaterialDesc& withAlphaMask(double cutoff) {
+    alphaMode = "MASK";
+    alphaCutoff = cutoff;
+    return *this;
+  }
+  MaterialDesc& twoSided() {
+    doubleSided = true;
+    return *this;
+  }
+  MaterialDesc& withBaseColorTransform(nlohmann::json transform) {
+    baseColorTransform = std::move(transform);
     return *this;
   }
   MaterialDesc& withEmissiveTexture(int texture) {
@@ -118,7 +142,7 @@ struct LightDesc {  // fields at their "omit" value are left out, so the glTF de
 struct CameraDesc {
   std::string name;  // empty: omitted
   std::string type = "perspective";
-  double yfov = 0.8, aspectRatio = 0.0 /* 0: omitted */, znear = 0.01, zfar = 100.0;
+  double yfov = 0.8, aspectRatio = 0.0 /* 0: omitted */, znear = 0.01, zfar = 100.0 /* perspective, 0: omitted */;
 
   CameraDesc& named(std::string n) {
     name = std::move(n);
@@ -147,7 +171,7 @@ struct NodeDesc {
   std::string name;
   int mesh = -1, camera = -1, light = -1;
   std::vector<int> children;
-  glm::vec3 translation{0.0f};
+  glm::dvec3 translation{0.0};  // double: tests place scenes far from the origin
   glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // (w, x, y, z)
   glm::vec3 scale{1.0f};
   std::vector<double> matrix;  // 16 numbers, column-major: written instead of TRS when set
@@ -172,7 +196,7 @@ struct NodeDesc {
     children = std::move(c);
     return *this;
   }
-  NodeDesc& translated(const glm::vec3& t) {
+  NodeDesc& translated(const glm::dvec3& t) {
     translation = t;
     return *this;
   }
@@ -208,6 +232,7 @@ class GltfWriter {
     explicitRoots_ = true;
   }
   void requireExtension(const std::string& name) { extensionsRequired_.push_back(name); }
+  void useExtension(const std::string& name) { extensionsUsed_.push_back(name); }
 
   // Low-level pieces for hand-made accessors (sparse, odd strides...).
   int addBufferView(const void* data, size_t size, size_t byteStride = 0);
@@ -230,7 +255,7 @@ class GltfWriter {
   std::vector<std::uint8_t> bin_;
   std::vector<int> roots_;
   bool explicitRoots_ = false;
-  std::vector<std::string> extensionsRequired_;
+  std::vector<std::string> extensionsRequired_, extensionsUsed_;
   std::vector<std::vector<int>> children_;
 };
 

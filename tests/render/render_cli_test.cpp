@@ -3,11 +3,13 @@
 #include <OpenImageIO/imageio.h>
 
 #include <array>
+#include <glm/gtc/quaternion.hpp>
 #include <cstdio>
 #include <sys/wait.h>
 
 #include "gl_test_env.h"
 #include "gltf_writer.h"
+#include "malformed_gltf.h"
 
 namespace lgh::test {
 namespace {
@@ -111,6 +113,119 @@ TEST_F(RenderCliTest, BadInputsFailWithClearMessages) {
     for (const std::string& word : c.expectedWords) EXPECT_NE(r.output.find(word), std::string::npos) << r.output;
   }
   EXPECT_FALSE(std::filesystem::exists(out)) << "a failed run left an output image";
+}
+
+TEST_F(RenderCliTest, MalformedGltfExitsWithStatusOneNamingFileAndProblem) {
+  // Every case of malformed_gltf.h through the real binary: exit status exactly 1 (not a crash, not
+  // a signal), "lgh-render: error: <file>: <problem>", and no image left behind. The runs start
+  // together: each spends ~2 s starting up (shared libraries) and a few ms failing.
+  const auto out = dir / "out.png";
+  const std::vector<MalformedGltf>& cases = malformedGltfCases();
+  std::vector<std::filesystem::path> files;
+  std::vector<FILE*> pipes;
+  for (const MalformedGltf& c : cases) {
+    files.push_back(c.write(dir.path()));
+    const std::string command = std::string(LGH_RENDER_EXE) + " " + quoted(files.back()) + " -o " + quoted(out) + " 2>&1";
+    pipes.push_back(popen(command.c_str(), "r"));
+    ASSERT_NE(pipes.back(), nullptr);
+  }
+  for (size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE(cases[i].name + " (" + cases[i].rule + ")");
+    std::string output;
+    std::array<char, 4096> buffer;
+    size_t n;
+    while ((n = fread(buffer.data(), 1, buffer.size(), pipes[i])) > 0) output.append(buffer.data(), n);
+    const int status = pclose(pipes[i]);
+    EXPECT_TRUE(WIFEXITED(status)) << "crashed:\n" << output;
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << output;
+    EXPECT_NE(output.find("lgh-render: error: " + files[i].string() + ": "), std::string::npos) << output;
+    for (const std::string& word : cases[i].expectedWords) EXPECT_NE(output.find(word), std::string::npos) << output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out)) << "a failed run left an output image";
+}
+
+// A floor, a box and a wall with a camera, no light at all: what most glTF models are.
+std::filesystem::path writeUnlitScene(const TempDir& dir, const glm::dvec3& offset = glm::dvec3(0.0)) {
+  GltfWriter w;
+  const int white = w.addMaterial(MaterialDesc{}.withBaseColor({0.8f, 0.8f, 0.8f, 1}));
+  const int red = w.addMaterial(MaterialDesc{}.withBaseColor({0.8f, 0.1f, 0.1f, 1}));
+  const int mesh = w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, white), quad({-2, 0, -2}, {4, 0, 0}, {0, 2, 0}, red),
+                              box({0.3f, 0.4f, 0.0f}, {0.4f, 0.4f, 0.4f}, white)});
+  const int site = w.addNode(NodeDesc{}.withMesh(mesh));
+  const int eye = w.addNode(NodeDesc{}
+                                .withCamera(w.addCamera(CameraDesc{}.named("eye")))
+                                .translated({0, 1.6, 4})
+                                .rotated(glm::angleAxis(glm::radians(-20.0f), glm::vec3(1, 0, 0))));
+  w.addNode(NodeDesc{}.translated(offset).withChildren({site, eye}));
+  return w.write(dir / "unlit.gltf");
+}
+
+TEST_F(RenderCliTest, SceneWithoutLightsHintsAtSunAndPointAndStillWritesItsImage) {
+  const auto scene = writeUnlitScene(dir);
+  const auto dark = dir / "dark.exr";
+  const RunResult r = runRender(quoted(scene) + " --width 160 --height 90 --vpls 4000 -o " + quoted(dark));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const size_t hint = r.output.find("no lights");
+  ASSERT_NE(hint, std::string::npos) << r.output;
+  const std::string line = r.output.substr(hint, r.output.find('\n', hint) - hint);
+  EXPECT_NE(line.find("--sun AZIMUTH,ELEVATION[,LUX]"), std::string::npos) << line;
+  EXPECT_NE(line.find("--point X,Y,Z,INTENSITY[,R,G,B]"), std::string::npos) << line;
+  int w = 0, h = 0;
+  EXPECT_EQ(meanValue(dark, &w, &h), 0.0);
+  EXPECT_EQ(w, 160);
+}
+
+TEST_F(RenderCliTest, SunLightsASceneWithoutLightsWithGlobalIllumination) {
+  // lgh-render MODEL.gltf --sun 30,45: direct sunlight plus indirect light through the VPLs.
+  const auto scene = writeUnlitScene(dir);
+  const auto image = dir / "sun.exr", indirect = dir / "indirect.exr", direct = dir / "direct.exr";
+  const RunResult r = runRender(quoted(scene) + " --sun 30,45 --width 160 --height 90 --vpls 4000 -o " + quoted(image) +
+                                " --aov indirect=" + quoted(indirect) + " --aov direct=" + quoted(direct));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.output.find("no lights"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("VPLs"), std::string::npos) << r.output;
+  int w = 0, h = 0;
+  const double directMean = meanValue(direct, &w, &h), indirectMean = meanValue(indirect, &w, &h);
+  EXPECT_GT(directMean, 0.05);
+  EXPECT_GT(indirectMean, 0.01 * directMean) << "no indirect light";
+  // Half the lux, half the light (direct and indirect scale with the sun).
+  const auto halfImage = dir / "half.exr";
+  ASSERT_EQ(runRender(quoted(scene) + " --sun 30,45,4 --width 160 --height 90 --vpls 4000 -o " + quoted(halfImage)).exitCode, 0);
+  EXPECT_NEAR(meanValue(halfImage, &w, &h), 0.5 * meanValue(image, &w, &h), 1e-3 * meanValue(image, &w, &h));
+}
+
+TEST_F(RenderCliTest, PointTakesWorldCoordinatesOfASceneFarFromTheOrigin) {
+  // The same unlit scene at the origin and 1e5 away, each lit by --point at the same spot relative to
+  // the scene, in the file's (world) coordinates: the same image.
+  TempDir far;
+  const auto near = dir / "near.exr", away = dir / "away.exr";
+  const std::string size = " --width 160 --height 90 --vpls 4000 --shadow-samples 0";
+  ASSERT_EQ(runRender(quoted(writeUnlitScene(dir)) + " --point -0.5,1.5,1,5" + size + " -o " + quoted(near)).exitCode, 0);
+  const RunResult r =
+      runRender(quoted(writeUnlitScene(far, {1e5, 0, 0})) + " --point 99999.5,1.5,1,5" + size + " -o " + quoted(away));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  int w = 0, h = 0;
+  const double a = meanValue(near, &w, &h), b = meanValue(away, &w, &h);
+  EXPECT_GT(a, 0.01);
+  EXPECT_NEAR(b, a, 1e-4 * a);
+}
+
+TEST_F(RenderCliTest, BadSunAndPointValuesFailWithTheirForm) {
+  const auto out = dir / "out.png";
+  const std::vector<BadInvocation> cases = {
+      {"sun with one number", "--sun 30 -o " + quoted(out), {"--sun", "AZIMUTH,ELEVATION[,LUX]"}},
+      {"sun below the nadir", "--sun 30,120 -o " + quoted(out), {"--sun", "elevation", "[-90, 90]"}},
+      {"sun not a number", "--sun 30,high -o " + quoted(out), {"--sun", "'high'"}},
+      {"point with 5 numbers", "--point 0,1,0,5,1 -o " + quoted(out), {"--point", "R,G,B"}},
+      {"point with negative intensity", "--point 0,1,0,-5 -o " + quoted(out), {"--point", "INTENSITY"}},
+  };
+  for (const BadInvocation& c : cases) {
+    SCOPED_TRACE(c.name);
+    const RunResult r = runRender(c.arguments);
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    for (const std::string& word : c.expectedWords) EXPECT_NE(r.output.find(word), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST_F(RenderCliTest, WindowBackendWithoutDisplaySaysWhatToDo) {

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <array>
+#include <glm/gtc/quaternion.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -135,6 +136,41 @@ TEST_F(ViewerTest, ScriptedScreenshotsMatchLghRender) {
             << "/255\n";
   EXPECT_LT(d.mean, 0.6 / 255.0);
   EXPECT_LT(d.largest, 24.0 / 255.0);
+}
+
+TEST_F(ViewerTest, SunFromTheCommandLineIsAnEditableLightAndMatchesLghRender) {
+  LGH_REQUIRE_XVFB();
+  // A scene without lights, --sun 30,45: the viewer's first frame is lgh-render's --sun 30,45; turned
+  // through the light panel's path (script light=0 direction=...) to azimuth 120, elevation 60, it is
+  // lgh-render's --sun 120,60. Unshadowed indirect light, so the frames are the same computation.
+  GltfWriter w;
+  const int white = w.addMaterial(MaterialDesc{}.withBaseColor({0.8f, 0.8f, 0.8f, 1}));
+  const int red = w.addMaterial(MaterialDesc{}.withBaseColor({0.8f, 0.1f, 0.1f, 1}));
+  w.addNode(NodeDesc{}.withMesh(w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, white),
+                                            quad({-2, 0, -2}, {4, 0, 0}, {0, 2, 0}, red),
+                                            box({0.3f, 0.4f, 0.0f}, {0.4f, 0.4f, 0.4f}, white)})));
+  w.addNode(NodeDesc{}.withCamera(w.addCamera(CameraDesc{}.named("eye"))).translated({0, 1.6, 4}).rotated(
+      glm::angleAxis(glm::radians(-20.0f), glm::vec3(1, 0, 0))));
+  const std::filesystem::path scene = w.write(dir / "unlit.gltf");
+  const std::string common = shellQuoted(scene) + " --width 160 --height 90 --vpls 2000 --shadow-samples 0 -q";
+  // Travel direction of a sun at azimuth 120, elevation 60: -(cos 60 sin 120, sin 60, cos 60 cos 120).
+  const std::string script = "frames=1;screenshot=" + (dir / "sun.png").string() +
+                             ";light=0 direction=-0.4330127019,-0.8660254038,0.25;frames=1;screenshot=" +
+                             (dir / "turned.png").string() + ";quit";
+  const RunResult viewer =
+      runShell(underXvfb(dir, std::string(kViewer) + " " + common + " --sun 30,45 --script " + shellQuoted(script)));
+  ASSERT_EQ(viewer.exitCode, 0) << viewer.output;
+  const std::string render = std::string(LGH_RENDER_EXE) + " " + common;
+  ASSERT_EQ(runShell(render + " --sun 30,45 -o " + shellQuoted(dir / "render_sun.png")).exitCode, 0);
+  ASSERT_EQ(runShell(render + " --sun 120,60 -o " + shellQuoted(dir / "render_turned.png")).exitCode, 0);
+  const Image sun = readImage(dir / "sun.png"), turned = readImage(dir / "turned.png");
+  const Difference first = compare(sun, readImage(dir / "render_sun.png"));
+  const Difference second = compare(turned, readImage(dir / "render_turned.png"));
+  std::cout << "[ viewer   ] --sun: largest |difference| " << first.largest * 255 << "/255; turned in the panel: "
+            << second.largest * 255 << "/255\n";
+  EXPECT_LE(first.largest, 1.0 / 255.0 + 1e-6);
+  EXPECT_LE(second.largest, 2.0 / 255.0 + 1e-6);  // the direction typed to 10 digits
+  EXPECT_GT(compare(sun, turned).mean, 2.0 / 255.0) << "turning the sun changed nothing";
 }
 
 TEST_F(ViewerTest, WithoutDisplaySaysWhatToDo) {
