@@ -27,11 +27,11 @@ struct Frame {
 
 RenderSettings testSettings() {
   RenderSettings s;
-  s.width = 160;
-  s.height = 90;
-  s.vpls = 4000;
-  s.bounces = 1;
-  s.emitterSamples = 0;
+  s.image.width = 160;
+  s.image.height = 90;
+  s.inputLights.vpls = 4000;
+  s.inputLights.bounces = 1;
+  s.inputLights.emitterSamples = 0;
   return s;
 }
 
@@ -39,7 +39,7 @@ Frame renderScene(const Scene& scene, const RenderSettings& settings = testSetti
   const SceneGpu gpu(scene);
   Renderer renderer(gpu, settings);
   Frame f;
-  f.stats = renderer.render(makeCameraView(resolveCamera(scene, settings), settings.width, settings.height));
+  f.stats = renderer.render(makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height));
   EXPECT_EQ(f.stats.nonFinitePixels, 0u);
   f.final = renderer.readImage(Aov::Final);
   f.direct = renderer.readImage(Aov::Direct);
@@ -290,9 +290,9 @@ TEST_F(GLTest, CutOutPartOfAnEmissiveSurfaceEmitsNothing) {
                   .translated({0, 4, 0})
                   .rotated(glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0))));
     RenderSettings s = testSettings();
-    s.vpls = 0;
-    s.emitterSamples = 16384;
-    s.shadowSamples = 0;
+    s.inputLights.vpls = 0;
+    s.inputLights.emitterSamples = 16384;
+    s.shadows.samples = 0;
     return renderScene(loadScene(w.write(dir / (name + ".gltf"))), s);
   };
   const Frame full = render("full", false), half = render("half", true);
