@@ -34,6 +34,7 @@ using glm::exp2;
 using glm::max;
 using glm::min;
 using glm::pow;
+using glm::sqrt;
 using glm::floatBitsToInt;
 using glm::intBitsToFloat;
 }  // namespace lgh::gpu
