@@ -20,6 +20,7 @@ struct FrameBenchOptions {
   float alpha = 1.0f;
   std::vector<int> interleave{1, 2, 4};
   int repeats = 3;
+  bool compareCubes = true;  // also time the light pass with the paper's cube volumes, frame by frame
   std::string csvPath;
   std::string backend = "auto";
 };

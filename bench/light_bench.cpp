@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -22,15 +23,25 @@
 namespace lgh::bench {
 namespace {
 
-// One point of the VPL-count sweep.
-struct SweepRow {
-  size_t target = 0, budget = 0, inputLights = 0;
-  int levels = 0;
-  std::vector<size_t> lightsPerLevel;
+// One way of drawing the light volumes at one point of the sweep: fragment counts and times.
+struct VolumePath {
   double rasterizedPerPixel = 0, shadedPerPixel = 0;
   unsigned maxRasterized = 0;
-  std::vector<double> lightPassMs, buildMs;
-  std::vector<double> bruteForceMs;  // empty when over the limit
+  std::vector<double> lightPassMs;
+  double efficiency() const { return rasterizedPerPixel > 0 ? shadedPerPixel / rasterizedPerPixel : 0.0; }
+  double medianMs() const { return spreadOf(lightPassMs).median; }
+};
+
+// One point of the VPL-count sweep: a VPL count and an interleaving factor.
+struct SweepRow {
+  size_t target = 0, budget = 0, inputLights = 0;
+  int tiles = 1;
+  int levels = 0;
+  std::vector<size_t> lightsPerLevel;
+  VolumePath cubes, culled;          // the paper's cubes, and culled volumes
+  std::vector<double> buildMs;       // 1x1 rows only
+  std::vector<double> bruteForceMs;  // 1x1 rows only; empty when over the limit
+  double speedUp() const { return cubes.medianMs() / std::max(culled.medianMs(), 1e-30); }
 };
 
 // One interleaving factor at a fixed VPL count.
@@ -45,6 +56,107 @@ struct InterleaveRow {
 
 double lightPassTotal(const FrameStats& s) {
   return s.passMs("interleave split") + s.passMs("light pass") + s.passMs("interleave resolve");
+}
+
+
+using RenderFrame = std::function<FrameStats(const RenderSettings&)>;
+
+// Cube and culled volumes at `s`: fragment counts from one counted frame each, then `repeats` timed
+// frames of each, alternating, so that a busy machine slows both alike.
+SweepRow measureVolumes(const RenderFrame& frame, RenderSettings s, int repeats) {
+  SweepRow row;
+  row.tiles = s.lightPass.interleave;
+  for (bool culling : {false, true}) {
+    VolumePath& path = culling ? row.culled : row.cubes;
+    s.lightPass.volumeCulling = culling;
+    s.lightPass.overdraw = true;
+    const FrameStats counted = frame(s);
+    path.rasterizedPerPixel = counted.lights.rasterizedPerPixel;
+    path.shadedPerPixel = counted.lights.shadedPerPixel;
+    path.maxRasterized = counted.lights.maxRasterized;
+    row.inputLights = counted.lights.inputLights;
+    row.levels = counted.lights.levels;
+    row.lightsPerLevel = counted.lights.lightsPerLevel;
+  }
+  row.budget = size_t(s.inputLights.vpls);
+  s.lightPass.overdraw = false;  // the counter's atomics would be timed too
+  for (int r = -1; r < repeats; ++r)  // r = -1: untimed, compiles the programs without the counter
+    for (bool culling : {false, true}) {
+      s.lightPass.volumeCulling = culling;
+      const double ms = frame(s).passMs("light pass");
+      if (r >= 0) (culling ? row.culled : row.cubes).lightPassMs.push_back(ms);
+    }
+  return row;
+}
+
+// The hierarchy's build time (a new seed rebuilds S0 and the hierarchy) and the brute-force pass.
+void measureBuildAndBruteForce(const RenderFrame& frame, RenderSettings s, int seed, const LightBenchOptions& options,
+                               SweepRow& row) {
+  for (int r = 0; r < options.repeats; ++r) {
+    s.inputLights.seed = seed + 1 + r;
+    row.buildMs.push_back(frame(s).passMs("LGH build"));
+  }
+  if (row.inputLights <= options.bruteForceLimit) {
+    s.lightPass.bruteForce = true;
+    for (int r = 0; r < std::min(options.repeats, 2); ++r) row.bruteForceMs.push_back(frame(s).passMs("light pass"));
+  }
+}
+
+void printSweep(const std::vector<SweepRow>& rows, const LightBenchOptions& options) {
+  TextTable sweep({"input lights", "tiles", "L", "grid lights drawn", "fragments/px cube", "culled", "shaded/px",
+                   "efficiency cube", "culled", "light pass ms cube", "culled", "speed-up"});
+  for (const SweepRow& r : rows) {
+    size_t drawn = 0;
+    for (size_t n : r.lightsPerLevel) drawn += n;
+    char eCube[16], eCulled[16];
+    std::snprintf(eCube, sizeof eCube, "%.2f", r.cubes.efficiency());
+    std::snprintf(eCulled, sizeof eCulled, "%.2f", r.culled.efficiency());
+    sweep.addRow({formatCount(r.inputLights), std::to_string(r.tiles) + "x" + std::to_string(r.tiles),
+                  std::to_string(r.levels), formatCount(drawn), formatMs(r.cubes.rasterizedPerPixel),
+                  formatMs(r.culled.rasterizedPerPixel), formatMs(r.culled.shadedPerPixel), eCube, eCulled,
+                  formatSpread(spreadOf(r.cubes.lightPassMs)), formatSpread(spreadOf(r.culled.lightPassMs)),
+                  formatRatio(r.speedUp())});
+  }
+  std::printf("Light pass vs input lights (S0 = VPLs): the paper's cubes and culled volumes, timed alternately\n");
+  sweep.print(stdout);
+  // Growth from the smallest to the largest count, per tiling and path (the paper: x2.4 from 1K to 1M).
+  for (int n : options.tiles) {
+    const SweepRow *a = nullptr, *b = nullptr;
+    for (const SweepRow& r : rows) {
+      if (r.tiles != n) continue;
+      if (!a) a = &r;
+      b = &r;
+    }
+    if (!a || a == b) continue;
+    const double lights = double(b->inputLights) / double(std::max<size_t>(a->inputLights, 1));
+    std::printf("  growth %s -> %s VPLs (x%.0f), %dx%d: fragments/px x%.2f cube, x%.2f culled; light pass x%.2f cube, "
+                "x%.2f culled (paper: x2.4 from 1K to 1M)\n",
+                shortCount(a->target).c_str(), shortCount(b->target).c_str(), lights, n, n,
+                b->cubes.rasterizedPerPixel / std::max(a->cubes.rasterizedPerPixel, 1e-30),
+                b->culled.rasterizedPerPixel / std::max(a->culled.rasterizedPerPixel, 1e-30),
+                b->cubes.medianMs() / std::max(a->cubes.medianMs(), 1e-30),
+                b->culled.medianMs() / std::max(a->culled.medianMs(), 1e-30));
+  }
+  std::printf("\nLGH build and brute force (1x1)\n");
+  TextTable builds({"input lights", "LGH build ms", "brute force ms", "brute force / culled light pass"});
+  // Brute force costs the same per light and pixel at every count: beyond the limit, extrapolate
+  // linearly from the largest count measured (marked as an estimate).
+  const SweepRow* measured = nullptr;
+  for (const SweepRow& r : rows)
+    if (!r.bruteForceMs.empty()) measured = &r;
+  for (const SweepRow& r : rows) {
+    if (r.tiles != 1) continue;
+    std::string brute = "-", ratio = "-";
+    if (measured) {
+      const bool estimate = r.bruteForceMs.empty();
+      const double perLight = spreadOf(measured->bruteForceMs).median / double(std::max<size_t>(measured->inputLights, 1));
+      const double bruteMs = estimate ? perLight * double(r.inputLights) : spreadOf(r.bruteForceMs).median;
+      brute = estimate ? "~" + formatMs(bruteMs) + " (extrapolated)" : formatSpread(spreadOf(r.bruteForceMs));
+      ratio = formatRatio(bruteMs / std::max(r.culled.medianMs(), 1e-30));
+    }
+    builds.addRow({formatCount(r.inputLights), formatSpread(spreadOf(r.buildMs)), brute, ratio});
+  }
+  builds.print(stdout);
 }
 
 }  // namespace
@@ -69,6 +181,10 @@ CLI::App* addLightCommand(CLI::App& app, LightBenchOptions& options) {
       ->capture_default_str();
   command->add_option("--start-level", options.startLevel, "finest level blended (0 or 1)")
       ->check(CLI::Range(0, 1))
+      ->capture_default_str();
+  command->add_option("--tiles", options.tiles, "interleaving factors of the VPL-count sweep, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 8))
       ->capture_default_str();
   command->add_option("--repeats", options.repeats, "timed frames per point")->check(CLI::PositiveNumber)->capture_default_str();
   command->add_option("--brute-force-limit", options.bruteForceLimit, "time the brute-force pass up to this many lights")
@@ -130,77 +246,24 @@ int runLightBench(const LightBenchOptions& options) {
     return stats;
   };
 
-  // --- Overdraw and light-pass time vs VPL count.
+  // --- Overdraw and light-pass time vs VPL count, cube and culled volumes.
   std::vector<SweepRow> rows;
   for (size_t target : options.vplCounts) {
-    SweepRow row;
-    row.target = target;
     RenderSettings s = settings;
     s.inputLights.vpls = int(target);
-    s.lightPass.overdraw = true;
-    FrameStats counted = frame(s);
     // Paths that leave the scene deposit nothing: scale the budget so the VPL count meets the target.
-    const size_t got = counted.lights.vpls;
-    if (got > 0 && got < target * 98 / 100) {
-      s.inputLights.vpls = int(std::min<double>(double(target) * double(target) / double(got), 16e6));
-      counted = frame(s);
-    }
-    row.budget = size_t(s.inputLights.vpls);
-    row.inputLights = counted.lights.inputLights;
-    row.levels = counted.lights.levels;
-    row.lightsPerLevel = counted.lights.lightsPerLevel;
-    row.rasterizedPerPixel = counted.lights.rasterizedPerPixel;
-    row.shadedPerPixel = counted.lights.shadedPerPixel;
-    row.maxRasterized = counted.lights.maxRasterized;
-    s.lightPass.overdraw = false;  // the counter's atomics would be timed too
-    for (int r = 0; r < options.repeats; ++r) row.lightPassMs.push_back(frame(s).passMs("light pass"));
-    // The build is timed by changing the seed, which rebuilds S0 and the hierarchy.
-    for (int r = 0; r < options.repeats; ++r) {
-      s.inputLights.seed = settings.inputLights.seed + 1 + r;
-      row.buildMs.push_back(frame(s).passMs("LGH build"));
-    }
-    if (row.inputLights <= options.bruteForceLimit) {
-      s.lightPass.bruteForce = true;
-      for (int r = 0; r < std::min(options.repeats, 2); ++r) row.bruteForceMs.push_back(frame(s).passMs("light pass"));
-    }
-    rows.push_back(row);
-    std::fprintf(stderr, "  %s VPLs done\n", shortCount(target).c_str());
-  }
-
-  TextTable sweep({"input lights", "L", "grid lights drawn", "fragments/px", "max", "shaded/px", "light pass ms",
-                   "brute force ms", "LGH build ms"});
-  for (const SweepRow& r : rows) {
-    size_t drawn = 0;
-    for (size_t n : r.lightsPerLevel) drawn += n;
-    sweep.addRow({formatCount(r.inputLights), std::to_string(r.levels), formatCount(drawn), formatMs(r.rasterizedPerPixel),
-                  formatCount(r.maxRasterized), formatMs(r.shadedPerPixel), formatSpread(spreadOf(r.lightPassMs)),
-                  r.bruteForceMs.empty() ? "-" : formatSpread(spreadOf(r.bruteForceMs)),
-                  formatSpread(spreadOf(r.buildMs))});
-  }
-  std::printf("Light pass vs input lights (S0 = VPLs)\n");
-  sweep.print(stdout);
-  if (rows.size() >= 2) {
-    const SweepRow &a = rows.front(), &b = rows.back();
-    std::printf("  growth %s -> %s VPLs (x%.0f): fragments/px x%.2f, light pass x%.2f\n", shortCount(a.target).c_str(),
-                shortCount(b.target).c_str(), double(b.inputLights) / double(std::max<size_t>(a.inputLights, 1)),
-                b.rasterizedPerPixel / std::max(a.rasterizedPerPixel, 1e-30),
-                spreadOf(b.lightPassMs).median / std::max(spreadOf(a.lightPassMs).median, 1e-30));
-  }
-  // Brute force costs the same per light and pixel at every count: beyond the limit, extrapolate
-  // linearly from the largest count measured (marked as an estimate).
-  const SweepRow* measured = nullptr;
-  for (const SweepRow& r : rows)
-    if (!r.bruteForceMs.empty()) measured = &r;
-  if (measured) {
-    const double perLight = spreadOf(measured->bruteForceMs).median / double(std::max<size_t>(measured->inputLights, 1));
-    for (const SweepRow& r : rows) {
-      const bool estimate = r.bruteForceMs.empty();
-      const double bruteMs = estimate ? perLight * double(r.inputLights) : spreadOf(r.bruteForceMs).median;
-      std::printf("  brute force / LGH light pass at %s VPLs: %s%s\n", shortCount(r.target).c_str(),
-                  formatRatio(bruteMs / std::max(spreadOf(r.lightPassMs).median, 1e-30)).c_str(),
-                  estimate ? " (brute force extrapolated linearly)" : "");
+    const size_t got = frame(s).lights.vpls;
+    if (got > 0 && got < target * 98 / 100) s.inputLights.vpls = int(std::min<double>(double(target) * double(target) / double(got), 16e6));
+    for (int n : options.tiles) {
+      s.lightPass.interleave = n;
+      rows.push_back(measureVolumes(frame, s, options.repeats));
+      SweepRow& row = rows.back();
+      row.target = target;
+      if (n == 1) measureBuildAndBruteForce(frame, s, settings.inputLights.seed, options, row);
+      std::fprintf(stderr, "  %s VPLs %dx%d done\n", shortCount(target).c_str(), n, n);
     }
   }
+  printSweep(rows, options);
 
   // --- Interleaving at one VPL count.
   std::vector<InterleaveRow> interleaved;
@@ -257,19 +320,23 @@ int runLightBench(const LightBenchOptions& options) {
   }
 
   if (csv) {
-    *csv << "table,input_lights,vpl_budget,levels,interleave,fragments_per_pixel,shaded_per_pixel,light_pass_ms_median,"
-            "light_pass_ms_min,light_pass_ms_max,brute_force_ms_median,build_ms_median,error_vs_1x1,error_vs_exact\n";
-    for (const SweepRow& r : rows) {
-      const Spread t = spreadOf(r.lightPassMs);
-      *csv << "vpls," << r.inputLights << "," << r.budget << "," << r.levels << ",1," << r.rasterizedPerPixel << ","
-           << r.shadedPerPixel << "," << t.median << "," << t.min << "," << t.max << ","
-           << (r.bruteForceMs.empty() ? std::string() : std::to_string(spreadOf(r.bruteForceMs).median)) << ","
-           << spreadOf(r.buildMs).median << ",,\n";
-    }
+    *csv << "table,input_lights,vpl_budget,levels,interleave,volumes,fragments_per_pixel,shaded_per_pixel,efficiency,"
+            "light_pass_ms_median,light_pass_ms_min,light_pass_ms_max,brute_force_ms_median,build_ms_median,"
+            "error_vs_1x1,error_vs_exact\n";
+    for (const SweepRow& r : rows)
+      for (bool culling : {false, true}) {
+        const VolumePath& p = culling ? r.culled : r.cubes;
+        const Spread t = spreadOf(p.lightPassMs);
+        *csv << "vpls," << r.inputLights << "," << r.budget << "," << r.levels << "," << r.tiles << ","
+             << (culling ? "culled" : "cube") << "," << p.rasterizedPerPixel << "," << p.shadedPerPixel << ","
+             << p.efficiency() << "," << t.median << "," << t.min << "," << t.max << ","
+             << (r.bruteForceMs.empty() ? std::string() : std::to_string(spreadOf(r.bruteForceMs).median)) << ","
+             << (r.buildMs.empty() ? std::string() : std::to_string(spreadOf(r.buildMs).median)) << ",,\n";
+      }
     for (const InterleaveRow& r : interleaved) {
       const Spread t = spreadOf(r.lightPassMs);
       *csv << "interleave," << renderer.inputLights().count << "," << options.interleaveVpls << ",," << r.n << ","
-           << r.rasterizedPerPixel << ",," << t.median << "," << t.min << "," << t.max << ",,," << r.errorVsNone << ","
+           << (settings.lightPass.volumeCulling ? "culled" : "cube") << "," << r.rasterizedPerPixel << ",,," << t.median << "," << t.min << "," << t.max << ",,," << r.errorVsNone << ","
            << (r.errorVsExact < 0 ? std::string() : std::to_string(r.errorVsExact)) << "\n";
     }
   }
@@ -281,11 +348,16 @@ int runLightBench(const LightBenchOptions& options) {
     j["height"] = options.height;
     j["alpha"] = options.alpha;
     j["start_level"] = options.startLevel;
+    auto path = [](const VolumePath& p) {
+      return nlohmann::json{{"fragments_per_pixel", p.rasterizedPerPixel}, {"max_fragments", p.maxRasterized},
+                            {"shaded_per_pixel", p.shadedPerPixel}, {"efficiency", p.efficiency()},
+                            {"light_pass_ms", p.lightPassMs}};
+    };
     for (const SweepRow& r : rows)
       j["vpls"].push_back({{"input_lights", r.inputLights}, {"vpl_budget", r.budget}, {"levels", r.levels},
-                           {"lights_per_level", r.lightsPerLevel}, {"fragments_per_pixel", r.rasterizedPerPixel},
-                           {"max_fragments", r.maxRasterized}, {"shaded_per_pixel", r.shadedPerPixel},
-                           {"light_pass_ms", r.lightPassMs}, {"build_ms", r.buildMs}, {"brute_force_ms", r.bruteForceMs}});
+                           {"interleave", r.tiles}, {"lights_per_level", r.lightsPerLevel}, {"cube", path(r.cubes)},
+                           {"culled", path(r.culled)}, {"speed_up", r.speedUp()}, {"build_ms", r.buildMs},
+                           {"brute_force_ms", r.bruteForceMs}});
     for (const InterleaveRow& r : interleaved)
       j["interleave"].push_back({{"n", r.n}, {"fragments_per_pixel", r.rasterizedPerPixel}, {"light_pass_ms", r.lightPassMs},
                                  {"mean_ratio", r.meanRatio}, {"error_vs_1x1", r.errorVsNone},
