@@ -15,7 +15,5 @@ void main() {
     gl_FragDepth = 1.0;
     return;
   }
-  vec4 m3 = vec4(frame.viewProjection[0][3], frame.viewProjection[1][3], frame.viewProjection[2][3],
-                 frame.viewProjection[3][3]);
-  gl_FragDepth = cullingDepth(dot(m3, vec4(position.xyz, 1.0)), depthScale);
+  gl_FragDepth = cullingDepth(clipW(frame.viewProjection, position.xyz), depthScale);
 }

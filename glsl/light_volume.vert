@@ -3,9 +3,14 @@
 // non-zero, d < 2R. Three shapes (pass.volumeShape):
 //   full screen  the top level and brute force (weight non-zero at any distance): one triangle;
 //   cube         the paper's cube of half-size 2R, 36 vertices, no depth test;
-//   culled       the screen rectangle that bounds the 2R sphere (4 vertices, a strip), at the depth
+//   culled       the screen octagon that bounds the 2R sphere (8 vertices, a strip), at the depth
 //                of the sphere's far side: the depth test against the surfaces (light_depth.frag)
-//                rejects every pixel whose surface lies behind the sphere before it is shaded.
+//                rejects every pixel whose surface lies behind the sphere before it is shaded; and
+//                not drawn at all when every surface under the rectangle lies in front of the
+//                sphere (the light is hidden), read from a max-depth pyramid (light_depth_pyramid.comp).
+//                Grid lights come sorted by the depth slice of their sphere's near side and are drawn
+//                with that slice as stencil reference: pixels whose surface lies in a nearer slice
+//                are rejected before shading too (render/passes/volume_culling.h).
 // With n x n interleaving the light is drawn into one tile only: its clip-space position is mapped
 // into that tile's block of the de-interleaved target and clipped to it with four clip distances.
 #include "shared/frame.glsl"
@@ -18,6 +23,12 @@ layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight li
 #else
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer GridLights { GpuGridLight lights[]; };
 #endif
+#ifdef LGH_SORTED_LIGHTS
+// Culled grid lights drawn slice by slice (VolumeCulling::drawSorted): the light's index in the buffer.
+layout(location = 0) in uint sortedLightIndex;
+#endif
+// Deepest culling depth of the surfaces per texel of each level, in the target's (tiled) layout.
+layout(binding = 2) uniform sampler2D surfaceDepthPyramid;
 
 out gl_PerVertex {
   vec4 gl_Position;
@@ -51,44 +62,87 @@ vec4 cubeCorner(float radius) {
   return clip;
 }
 
-// A corner of the strip (0: lower left, 1: lower right, 2: upper left, 3: upper right) of the NDC
-// rectangle bounding the sphere, at the culling depth of its far side (the depth test passes where
-// the surface is not behind the sphere). The camera inside or beside the sphere: the whole viewport.
-// A sphere wholly behind the eye: a degenerate rectangle, nothing drawn.
-vec4 culledCorner(float radius) {
-  float r = radius * (1.0 + kCullingMargin);
-  vec2 wRange = sphereClipWRange(frame.viewProjection, lightPosition, r);
-  if (wRange.y <= 0.0) return vec4(0.0, 0.0, 0.0, 1.0);
-  vec4 bounds;
-  if (!projectedSphereBounds(frame.viewProjection, lightPosition, r, bounds)) bounds = vec4(-1.0, -1.0, 1.0, 1.0);
-  bounds = clamp(bounds, -1.0, 1.0);  // also keeps far-off rectangles away from the rasterizer's guard band
-  vec2 corner = vec2(float(gl_VertexID & 1), float(gl_VertexID >> 1));
-  float farDepth = cullingDepth(wRange.y * (1.0 + kCullingMargin), pass.cullingDepthScale);
-  return vec4(mix(bounds.xy, bounds.zw, corner), 2.0 * farDepth - 1.0, 1.0);
-}
+// Where a light's tile lies in the target: target NDC = scale * full-resolution NDC + offset (w = 1),
+// and the tile's block [lo, hi] in target NDC.
+struct TileMap {
+  vec2 scale, offset, lo, hi;
+};
 
 // Interleaving: this light belongs to tile (k mod n^2) of its level, k its index within the level.
-// Maps the full-resolution clip position into that tile's block and clips it there.
-vec4 toTile(vec4 clip, uint index, uint level) {
+TileMap tileOf(uint index, uint level) {
   uint n = pass.tilesPerAxis;
   uint levelStart = pass.levelOffsets[level / 4u][level % 4u];
   uint tile = (index + pass.boundLightOffset - levelStart) % (n * n);
   vec2 t = vec2(float(tile % n), float(tile / n));
   vec2 tileSize = vec2(pass.tileWidth, pass.tileHeight), full = vec2(pass.imageWidth, pass.imageHeight);
   // Full-resolution window x maps to tile-local x' = (x - t - 0.5) / n + 0.5, placed at t * tileSize.
-  vec2 a = full / (float(n * n) * tileSize);
-  vec2 b = 2.0 * (t * tileSize + (0.5 * full - t - 0.5) / float(n) + 0.5) / (float(n) * tileSize) - 1.0;
-  vec4 tiled = vec4(a * clip.xy + b * clip.w, clip.z, clip.w);
-  vec2 lo = 2.0 * t / float(n) - 1.0, hi = 2.0 * (t + 1.0) / float(n) - 1.0;
-  gl_ClipDistance[0] = tiled.x - lo.x * tiled.w;
-  gl_ClipDistance[1] = hi.x * tiled.w - tiled.x;
-  gl_ClipDistance[2] = tiled.y - lo.y * tiled.w;
-  gl_ClipDistance[3] = hi.y * tiled.w - tiled.y;
+  TileMap m;
+  m.scale = full / (float(n * n) * tileSize);
+  m.offset = 2.0 * (t * tileSize + (0.5 * full - t - 0.5) / float(n) + 0.5) / (float(n) * tileSize) - 1.0;
+  m.lo = 2.0 * t / float(n) - 1.0;
+  m.hi = 2.0 * (t + 1.0) / float(n) - 1.0;
+  return m;
+}
+
+// Maps the full-resolution clip position into the tile's block and clips it there.
+vec4 toTile(vec4 clip, TileMap m) {
+  vec4 tiled = vec4(m.scale * clip.xy + m.offset * clip.w, clip.z, clip.w);
+  gl_ClipDistance[0] = tiled.x - m.lo.x * tiled.w;
+  gl_ClipDistance[1] = m.hi.x * tiled.w - tiled.x;
+  gl_ClipDistance[2] = tiled.y - m.lo.y * tiled.w;
+  gl_ClipDistance[3] = m.hi.y * tiled.w - tiled.y;
   return tiled;
 }
 
+// True when every surface under the target-NDC rectangle lies in front of culling depth `nearDepth`
+// (or there is none): the deepest over at most 2 x 2 texels of the pyramid level whose texels are at
+// least as large as the rectangle.
+bool surfacesInFront(vec4 rect, float nearDepth) {
+  vec2 size = vec2(textureSize(surfaceDepthPyramid, 0));
+  vec2 lo = clamp((rect.xy * 0.5 + 0.5) * size, vec2(0.0), size - 1.0);
+  vec2 hi = clamp((rect.zw * 0.5 + 0.5) * size, vec2(0.0), size - 1.0);
+  int top = textureQueryLevels(surfaceDepthPyramid) - 1;
+  int level = clamp(int(ceil(log2(max(max(hi.x - lo.x, hi.y - lo.y), 1.0)))), 0, top);
+  ivec2 last = textureSize(surfaceDepthPyramid, level) - 1;
+  ivec2 a = min(ivec2(lo) >> level, last), b = min(ivec2(hi) >> level, last);
+  float deepest = 0.0;
+  for (int y = a.y; y <= b.y; ++y)
+    for (int x = a.x; x <= b.x; ++x) deepest = max(deepest, texelFetch(surfaceDepthPyramid, ivec2(x, y), level).r);
+  return deepest < nearDepth;
+}
+
+// The octagon's corners in triangle-strip order (a zigzag across the convex polygon).
+const uint kOctagonStrip[8] = uint[](0u, 1u, 7u, 2u, 6u, 3u, 5u, 4u);
+
+// A corner of the strip of the NDC octagon bounding the sphere (its rectangle with the corners cut by
+// the diagonal tangents), at the culling depth of its far side (the depth test passes where the
+// surface is not behind the sphere). The camera inside or beside the sphere: the whole viewport.
+// Nothing drawn (a degenerate rectangle) for a sphere wholly behind the eye, or one that every
+// surface under its rectangle hides.
+vec4 culledCorner(float radius, TileMap tile) {
+  const vec4 nothing = vec4(0.0, 0.0, 0.0, 1.0);
+  float r = radius * (1.0 + kCullingMargin);
+  vec2 wRange = sphereClipWRange(frame.viewProjection, lightPosition, r);
+  if (wRange.y <= 0.0) return nothing;
+  vec4 bounds, diagonals;
+  if (!projectedSphereBounds(frame.viewProjection, lightPosition, r, bounds, diagonals)) {
+    bounds = vec4(-1.0, -1.0, 1.0, 1.0);
+    diagonals = vec4(-2.0, -2.0, 2.0, 2.0);
+  }
+  bounds = clamp(bounds, -1.0, 1.0);  // also keeps far-off polygons away from the rasterizer's guard band
+  vec4 inTile = clamp(vec4(tile.scale, tile.scale) * bounds + vec4(tile.offset, tile.offset), tile.lo.xyxy, tile.hi.xyxy);
+  float nearDepth = cullingDepth(wRange.x * (1.0 - kCullingMargin), pass.cullingDepthScale);
+  if (surfacesInFront(inTile, nearDepth)) return nothing;
+  float farDepth = cullingDepth(wRange.y * (1.0 + kCullingMargin), pass.cullingDepthScale);
+  return vec4(octagonCorner(bounds, diagonals, kOctagonStrip[gl_VertexID]), 2.0 * farDepth - 1.0, 1.0);
+}
+
 void main() {
+#ifdef LGH_SORTED_LIGHTS
+  uint index = sortedLightIndex;
+#else
   uint index = pass.instanceOffset + uint(gl_InstanceID);
+#endif
 #ifdef LGH_S0_INPUT
   ShadedLight l = decodeInputLight(lights[index]);
   lightId = kSlotS0 | (index + pass.boundLightOffset);
@@ -103,12 +157,13 @@ void main() {
   uint role = pass.bruteForce != 0u ? kRoleOnly : levelRole(l.level, pass.firstLevel, pass.levels);
   lightBlend = vec2(R, float(role));
 
+  TileMap tile = tileOf(index, l.level);
   vec4 clip;
   if (pass.volumeShape == kVolumeFullScreen)
     clip = fullScreenCorner();
   else if (pass.volumeShape == kVolumeCube)
     clip = cubeCorner(2.0 * R);
   else
-    clip = culledCorner(2.0 * R);
-  gl_Position = toTile(clip, index, l.level);
+    clip = culledCorner(2.0 * R, tile);
+  gl_Position = toTile(clip, tile);
 }

@@ -35,6 +35,7 @@ using glm::max;
 using glm::min;
 using glm::pow;
 using glm::sqrt;
+using glm::floor;
 using glm::floatBitsToInt;
 using glm::intBitsToFloat;
 }  // namespace lgh::gpu

@@ -20,7 +20,7 @@ GPU_CONST uint kNoLight = 0xffffffffu;
 // How a light volume is drawn (LightPassUniforms::volumeShape).
 GPU_CONST uint kVolumeFullScreen = 0u;  // a full-screen triangle (top level, brute force)
 GPU_CONST uint kVolumeCube = 1u;        // the paper's cube of half-size 2R, no depth test
-GPU_CONST uint kVolumeCulled = 2u;      // the screen rectangle of the 2R sphere, depth-tested
+GPU_CONST uint kVolumeCulled = 2u;      // the screen octagon of the 2R sphere, depth- and stencil-tested
 
 // Scalars in groups of four (std140 and C++ agree without padding; see gpu_prelude.h).
 GPU_STRUCT(LightPassUniforms) {

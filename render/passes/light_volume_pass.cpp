@@ -1,6 +1,7 @@
 #include "render/passes/light_volume_pass.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <numeric>
 #include <stdexcept>
@@ -17,6 +18,7 @@ struct LightVolumePass::Draw {
   const gl::Buffer* buffer = nullptr;
   bool s0Input = false;                  // GpuLight (S0) rather than GpuGridLight
   unsigned shape = gpu::kVolumeCube;     // gpu::kVolume*
+  bool sortedBySlice = false;            // culled grid lights: drawn slice by slice (VolumeCulling)
   size_t first = 0, count = 0;
   size_t boundOffset = 0, boundLights = 0;  // S0: the chunk bound (in lights); grid lights: whole buffer
 };
@@ -25,7 +27,7 @@ namespace {
 
 // Vertices per instance and primitive of each volume shape (light_volume.vert).
 GLsizei verticesOf(unsigned shape) {
-  return shape == gpu::kVolumeFullScreen ? 3 : shape == gpu::kVolumeCube ? 36 : 4;
+  return shape == gpu::kVolumeFullScreen ? 3 : shape == gpu::kVolumeCube ? 36 : 8;
 }
 GLenum primitiveOf(unsigned shape) { return shape == gpu::kVolumeCulled ? GL_TRIANGLE_STRIP : GL_TRIANGLES; }
 
@@ -65,10 +67,11 @@ LightVolumePass::LightVolumePass(bool floatAtomics) : floatAtomics_(floatAtomics
   gl::checkErrors("light pass setup");
 }
 
-const gl::Program& LightVolumePass::program(bool s0Input, bool culled, const LightPassOptions& options) {
+const gl::Program& LightVolumePass::program(const Draw& draw, const LightPassOptions& options) {
   gl::Defines defines;
-  if (s0Input) defines.emplace_back("LGH_S0_INPUT", "1");
-  if (culled) defines.emplace_back("LGH_DEPTH_CULLED", "1");
+  if (draw.s0Input) defines.emplace_back("LGH_S0_INPUT", "1");
+  if (draw.shape == gpu::kVolumeCulled) defines.emplace_back("LGH_DEPTH_CULLED", "1");
+  if (draw.sortedBySlice) defines.emplace_back("LGH_SORTED_LIGHTS", "1");
   if (options.pass.overdraw) defines.emplace_back("LGH_COUNT_OVERDRAW", "1");
   if (options.shadows.samples > 0) {
     defines.emplace_back("LGH_SELECT_SHADOWS", "1");
@@ -105,6 +108,8 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
   const std::vector<Draw> draws = drawList(lights, lightCount, hierarchy, options, L, counts);
   uploadUniforms(draws, hierarchy, options, target.layout, L);
   bindTargets(options, target);
+  if (options.pass.volumeCulling) prepareCulling(draws, hierarchy, options, target, L);
+  bindInputs(options, target);
   issueDraws(draws, options);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl::checkErrors("light pass");
@@ -126,7 +131,7 @@ std::vector<LightVolumePass::Draw> LightVolumePass::drawList(const gl::Buffer& l
     const unsigned shape = options.pass.bruteForce ? gpu::kVolumeFullScreen : volume;
     for (size_t first = 0; first < lightCount; first += maxBlockLights_) {
       const size_t n = std::min(maxBlockLights_, lightCount - first);
-      draws.push_back({&lights, true, shape, 0, n, first, n});
+      draws.push_back({&lights, true, shape, false, 0, n, first, n});
     }
     counts.lightsPerLevel[0] = lightCount;
   }
@@ -135,10 +140,10 @@ std::vector<LightVolumePass::Draw> LightVolumePass::drawList(const gl::Buffer& l
     const size_t gridLights = hierarchy.gridLightCount;
     const size_t volumesEnd = hierarchy.levels[size_t(L)].offset;
     if (L > 1 && volumesEnd > hierarchy.levels[1].offset)
-      draws.push_back({&hierarchy.gridLights, false, volume, hierarchy.levels[1].offset,
+      draws.push_back({&hierarchy.gridLights, false, volume, volume == gpu::kVolumeCulled, hierarchy.levels[1].offset,
                        volumesEnd - hierarchy.levels[1].offset, 0, gridLights});
     if (hierarchy.levels[size_t(L)].count > 0)
-      draws.push_back({&hierarchy.gridLights, false, gpu::kVolumeFullScreen, volumesEnd,
+      draws.push_back({&hierarchy.gridLights, false, gpu::kVolumeFullScreen, false, volumesEnd,
                        hierarchy.levels[size_t(L)].count, 0, gridLights});
     for (int l = 1; l <= L; ++l) counts.lightsPerLevel[size_t(l)] = hierarchy.levels[size_t(l)].count;
   }
@@ -180,54 +185,50 @@ void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHi
   uniforms_.update(staging.data(), staging.size());
 }
 
-// Clears and binds what the fragments write (irradiance, fragment counts, shadow slots) and read
-// (the surfaces), and with volume culling fills the depth they are tested against.
+// Clears and binds what the fragments write (irradiance, fragment counts, shadow slots) and read (the
+// surfaces); with volume culling the framebuffer also holds the culling depth and slices.
 void LightVolumePass::bindTargets(const LightPassOptions& options, LightPassTarget& target) {
   const glm::ivec2 size = target.layout.targetSize();
-  const bool culling = options.pass.volumeCulling;
-  if (culling && (cullingDepth_.width() != size.x || cullingDepth_.height() != size.y))
-    cullingDepth_ = gl::Texture2D(size.x, size.y, GL_DEPTH_COMPONENT32F);
   // Made per frame (the targets may change) and kept until the next: deleting a bound framebuffer unbinds it.
-  framebuffer_ = gl::Framebuffer({&target.irradiance}, culling ? &cullingDepth_ : nullptr);
+  framebuffer_ = gl::Framebuffer({&target.irradiance}, options.pass.volumeCulling ? &culling_.depthStencil(size) : nullptr);
   framebuffer_.bind();
   glViewport(0, 0, size.x, size.y);
   const float zero[4] = {0, 0, 0, 0};
   glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 0, zero);
-  if (options.pass.overdraw) {
-    target.fragmentCounts->clearUint(0);
-    target.fragmentCounts->bindImage(0, GL_READ_WRITE);
-  }
+  if (options.pass.overdraw) target.fragmentCounts->clearUint(0);
   if (options.shadows.samples > 0) {
     target.shadowSlots->totals.clear();
     target.shadowSlots->slots.clearUint(gpu::kNoLight);
+  }
+}
+
+// The culling depth, slices and pyramid from the surfaces, and the culled grid lights sorted by slice.
+void LightVolumePass::prepareCulling(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy,
+                                     const LightPassOptions& options, const LightPassTarget& target, int L) {
+  culling_.prepare(target.position, options.sceneSize);
+  for (const Draw& d : draws)
+    if (d.sortedBySlice)
+      culling_.sortBySlice({d.buffer, d.first, d.count, options.pass.alpha, float(hierarchy.grid.topCellSize),
+                            options.sceneSize, L});
+}
+
+// What the light volumes read and write besides the framebuffer; after the culling preparation, which
+// uses image units, textures and storage bindings of its own.
+void LightVolumePass::bindInputs(const LightPassOptions& options, LightPassTarget& target) {
+  if (options.pass.overdraw) target.fragmentCounts->bindImage(0, GL_READ_WRITE);
+  if (options.shadows.samples > 0) {
     target.shadowSlots->totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
     target.shadowSlots->slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   }
   target.position.bindTexture(0);
   target.normal.bindTexture(1);
-  glBindVertexArray(emptyVertexArray_.id());
-  if (culling) writeCullingDepth(options, target);
-}
-
-// One full-screen triangle writing each surface's culling depth; colour untouched.
-void LightVolumePass::writeCullingDepth(const LightPassOptions& options, const LightPassTarget& target) {
-  if (!cullingDepthProgram_) cullingDepthProgram_ = gl::Program::graphics("display.vert", "light_depth.frag");
-  cullingDepthProgram_.use();
-  cullingDepthProgram_.set("depthScale", options.sceneSize);
-  target.position.bindTexture(0);
-  glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_ALWAYS);
-  glDepthMask(GL_TRUE);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDepthMask(GL_FALSE);
-  glDisable(GL_DEPTH_TEST);
+  if (options.pass.volumeCulling) culling_.bindPyramid();
 }
 
 // Additive blending, one fragment per covered pixel (cubes cull their front faces; rectangles and the
-// full-screen triangle face the camera), clipped to the light's tile; culled volumes pass the depth
-// test only where the surface is not behind the sphere (GEQUAL against its far side).
+// full-screen triangle face the camera), clipped to the light's tile. Culled volumes pass the depth
+// test only where the surface is not behind the sphere (GEQUAL against its far side) and, sorted by
+// slice, the stencil test only where it is not in front of the sphere's slice.
 void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options) {
   glDepthMask(GL_FALSE);
   glDepthFunc(GL_GEQUAL);
@@ -242,11 +243,15 @@ void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPass
     const size_t stride = d.s0Input ? sizeof(gpu::GpuLight) : sizeof(gpu::GpuGridLight);
     d.buffer->bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, d.boundOffset * stride, d.boundLights * stride);
     uniforms_.bindRange(GL_UNIFORM_BUFFER, LGH_UBO_PASS, i * uniformStride_, sizeof(gpu::LightPassUniforms));
-    const bool culled = d.shape == gpu::kVolumeCulled;
-    program(d.s0Input, culled, options).use();
+    program(d, options).use();
     if (d.shape == gpu::kVolumeCube) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
-    if (culled) glEnable(GL_DEPTH_TEST); else glDisable(GL_DEPTH_TEST);
-    glDrawArraysInstanced(primitiveOf(d.shape), 0, verticesOf(d.shape), GLsizei(d.count));
+    if (d.shape == gpu::kVolumeCulled) glEnable(GL_DEPTH_TEST); else glDisable(GL_DEPTH_TEST);
+    if (d.sortedBySlice) {
+      culling_.drawSorted();
+    } else {
+      glBindVertexArray(emptyVertexArray_.id());
+      glDrawArraysInstanced(primitiveOf(d.shape), 0, verticesOf(d.shape), GLsizei(d.count));
+    }
   }
   glBindVertexArray(0);
   for (int c = 0; c < 4; ++c) glDisable(GL_CLIP_DISTANCE0 + c);

@@ -5,8 +5,9 @@
 // an RGBA32F target with additive blending. Volumes are either the paper's cubes of half-size 2R_l
 // (no depth test: every pixel under the cube is shaded) or, with volume culling, the screen rectangle
 // of the 2R_l sphere depth-tested against the surfaces, so that a pixel whose surface lies behind the
-// sphere is rejected before shading (its weight is zero: the image and the shadow selection are the
-// same, only cheaper).
+// sphere is rejected before shading, and skipped whole when every surface under it lies in front of
+// the sphere (a max-depth pyramid). Only zero-weight fragments go: the image and the shadow selection
+// are the same, only cheaper.
 //   in:  surfaces (G-buffer position and normal, or their interleaved tiles), the input lights S0
 //        and the hierarchy built over them, frame uniforms (LGH_UBO_FRAME)
 //   out: irradiance (rgb: W/m^2, albedo / pi gives radiance; a: fragments that shaded the pixel),
@@ -21,6 +22,7 @@
 #include "render/gl/texture.h"
 #include "render/passes/interleave_pass.h"
 #include "render/passes/lgh_build_pass.h"
+#include "render/passes/volume_culling.h"
 #include "render/settings.h"
 
 namespace lgh {
@@ -77,9 +79,11 @@ class LightVolumePass {
   void uploadUniforms(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy, const LightPassOptions& options,
                       const TileLayout& layout, int levels);
   void bindTargets(const LightPassOptions& options, LightPassTarget& target);
-  void writeCullingDepth(const LightPassOptions& options, const LightPassTarget& target);
+  void prepareCulling(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy, const LightPassOptions& options,
+                      const LightPassTarget& target, int levels);
+  void bindInputs(const LightPassOptions& options, LightPassTarget& target);
   void issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options);
-  const gl::Program& program(bool s0Input, bool culled, const LightPassOptions& options);
+  const gl::Program& program(const Draw& draw, const LightPassOptions& options);
 
   bool floatAtomics_;
   std::map<std::string, gl::Program> programs_;  // by their defines, compiled on first use
@@ -87,9 +91,8 @@ class LightVolumePass {
   size_t uniformStride_ = 0;
   size_t maxBlockLights_ = 0;            // S0 lights per storage block binding
   gl::VertexArrayHandle emptyVertexArray_;  // draws take their vertices from gl_VertexID
-  gl::Program cullingDepthProgram_;         // light_depth.frag
-  gl::Texture2D cullingDepth_;              // DEPTH32F in the target's layout, with volume culling
-  gl::Framebuffer framebuffer_;             // irradiance (+ cullingDepth_), made by each execute
+  VolumeCulling culling_;                   // depth, slices, pyramid and sorting for culled volumes
+  gl::Framebuffer framebuffer_;             // irradiance (+ culling depth-stencil), made by each execute
 };
 
 }  // namespace lgh

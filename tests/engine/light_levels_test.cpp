@@ -76,9 +76,9 @@ TEST(LightLevels, SphereBoundContainsAndTouchesTheProjectedSphere) {
     const glm::mat4 m = projection * view;
     const glm::vec3 c = eye + glm::vec3(glm::inverse(view) * glm::vec4(2 * u(rng), 2 * u(rng), -3.0f + 2.5f * u(rng), 0.0f));
     const float r = 0.05f + 1.5f * std::abs(u(rng));
-    glm::vec4 bounds(0.0f);
+    glm::vec4 bounds(0.0f), diagonals(0.0f);
     const glm::vec2 w = gpu::sphereClipWRange(m, c, r);
-    const bool finite = gpu::projectedSphereBounds(m, c, r, bounds);
+    const bool finite = gpu::projectedSphereBounds(m, c, r, bounds, diagonals);
     // No finite bound exactly when the sphere reaches the eye plane.
     EXPECT_EQ(finite, w.x > 0.0f) << "trial " << trial;
     if (!finite) continue;
@@ -96,6 +96,11 @@ TEST(LightLevels, SphereBoundContainsAndTouchesTheProjectedSphere) {
       ASSERT_GE(ndc.y, bounds.y - tolerance) << "trial " << trial;
       ASSERT_LE(ndc.x, bounds.z + tolerance) << "trial " << trial;
       ASSERT_LE(ndc.y, bounds.w + tolerance) << "trial " << trial;
+      // Inside the octagon: the diagonal ranges hold x + y and x - y too.
+      ASSERT_GE(ndc.x + ndc.y, diagonals.x - 2 * tolerance) << "trial " << trial;
+      ASSERT_LE(ndc.x + ndc.y, diagonals.z + 2 * tolerance) << "trial " << trial;
+      ASSERT_GE(ndc.x - ndc.y, diagonals.y - 2 * tolerance) << "trial " << trial;
+      ASSERT_LE(ndc.x - ndc.y, diagonals.w + 2 * tolerance) << "trial " << trial;
       reached = glm::vec4(glm::min(glm::vec2(reached), ndc), glm::max(glm::vec2(reached.z, reached.w), ndc));
     }
     const float size = std::max(bounds.z - bounds.x, bounds.w - bounds.y);
@@ -108,6 +113,31 @@ TEST(LightLevels, SphereBoundContainsAndTouchesTheProjectedSphere) {
     EXPECT_LT(bounds.w - reached.w, 2e-2f * size) << "trial " << trial;
   }
   EXPECT_GT(bounded, 150);
+}
+
+// The octagon's corners lie on its boundary: inside the rectangle and the diagonal ranges, each
+// corner on at least two of the eight lines, in counter-clockwise order (a convex polygon).
+TEST(LightLevels, OctagonCornersBoundTheSameRegion) {
+  const glm::mat4 m = glm::perspective(1.0f, 1.6f, 0.1f, 100.0f);
+  for (float x : {-2.0f, 0.0f, 1.5f})
+    for (float r : {0.3f, 1.0f}) {
+      glm::vec4 box, diagonals;
+      ASSERT_TRUE(gpu::projectedSphereBounds(m, glm::vec3(x, 0.5f, -5.0f), r, box, diagonals));
+      float area = 0;
+      for (unsigned k = 0; k < 8; ++k) {
+        const glm::vec2 p = gpu::octagonCorner(box, diagonals, k), q = gpu::octagonCorner(box, diagonals, (k + 1) % 8);
+        EXPECT_GE(p.x, box.x - 1e-6f);
+        EXPECT_LE(p.x, box.z + 1e-6f);
+        EXPECT_GE(p.x + p.y, diagonals.x - 1e-5f);
+        EXPECT_LE(p.x + p.y, diagonals.z + 1e-5f);
+        EXPECT_GE(p.x - p.y, diagonals.y - 1e-5f);
+        EXPECT_LE(p.x - p.y, diagonals.w + 1e-5f);
+        area += p.x * q.y - q.x * p.y;
+      }
+      const float rectangle = (box.z - box.x) * (box.w - box.y);
+      EXPECT_GT(0.5f * area, 0.75f * rectangle);  // at least the inscribed ellipse's pi/4 of it
+      EXPECT_LT(0.5f * area, 0.90f * rectangle);  // the corners are cut
+    }
 }
 
 TEST(LightLevels, CullingDepthIsMonotonicInW) {
