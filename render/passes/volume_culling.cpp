@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "render/gl/debug.h"
 #include "shared/bindings.h"
@@ -13,6 +14,14 @@ namespace {
 // Relative widening of every culling bound (light_volume.vert's kCullingMargin).
 constexpr float kCullingMargin = 1e-3f;
 
+bool hasExtension(const char* name) {
+  GLint count = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i)
+    if (std::strcmp(reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i))), name) == 0) return true;
+  return false;
+}
+
 gl::VertexArrayHandle newVertexArray() {
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
@@ -23,7 +32,10 @@ gl::VertexArrayHandle newVertexArray() {
 
 static_assert(kCullingSlices >= 1 && kCullingSlices <= gpu::kMaxCullingSlices, "slices must fit the 8-bit stencil");
 
-VolumeCulling::VolumeCulling() : emptyVertexArray_(newVertexArray()), sortedVertexArray_(newVertexArray()) {
+VolumeCulling::VolumeCulling()
+    : stencilExport_(hasExtension("GL_ARB_shader_stencil_export")),
+      emptyVertexArray_(newVertexArray()),
+      sortedVertexArray_(newVertexArray()) {
   // Attribute 0: one light index per instance, honouring each indirect draw's base instance.
   glVertexArrayAttribIFormat(sortedVertexArray_.id(), 0, 1, GL_UNSIGNED_INT, 0);
   glVertexArrayAttribBinding(sortedVertexArray_.id(), 0, 0);
@@ -50,11 +62,16 @@ void VolumeCulling::prepare(const gl::Texture2D& position, float sceneSize) {
   glBindVertexArray(0);
 }
 
-// A full-screen triangle writes each surface's depth, then one instanced draw of full-screen triangles
-// at the slice boundaries counts in the stencil the boundaries at or before it. Colour untouched.
+// A full-screen triangle writes each surface's depth and, with stencil export, its slice; without,
+// one instanced draw of full-screen triangles at the slice boundaries counts in the stencil the
+// boundaries at or before each surface (slices - 1 fill passes: cheap on a GPU, not on llvmpipe).
+// Colour untouched.
 void VolumeCulling::writeDepthAndSlices(const gl::Texture2D& position, float sceneSize) {
-  if (!depthProgram_) depthProgram_ = gl::Program::graphics("display.vert", "light_depth.frag");
-  if (!boundaryProgram_) boundaryProgram_ = gl::Program::graphics("slice_boundaries.vert", "no_color.frag");
+  if (!depthProgram_) {
+    gl::Defines defines;
+    if (stencilExport_) defines.emplace_back("LGH_STENCIL_EXPORT", "1");
+    depthProgram_ = gl::Program::graphics("display.vert", "light_depth.frag", defines);
+  }
   const float clearDepth = 1.0f;
   GLint framebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
@@ -63,20 +80,25 @@ void VolumeCulling::writeDepthAndSlices(const gl::Texture2D& position, float sce
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_ALWAYS);
   glDepthMask(GL_TRUE);
-  depthProgram_.use();
-  depthProgram_.set("depthScale", sceneSize);
-  position.bindTexture(0);
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-
-  glDepthMask(GL_FALSE);
-  glDepthFunc(GL_LEQUAL);  // boundary <= surface depth: one more boundary before the surface
   glEnable(GL_STENCIL_TEST);
   glStencilFunc(GL_ALWAYS, 0, 0xff);
-  glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
   glStencilMask(0xff);
-  boundaryProgram_.use();
-  boundaryProgram_.set("slices", kCullingSlices);
-  glDrawArraysInstanced(GL_TRIANGLES, 0, 3, GLsizei(kCullingSlices - 1));
+  glStencilOp(GL_KEEP, GL_KEEP, stencilExport_ ? GL_REPLACE : GL_KEEP);
+  depthProgram_.use();
+  depthProgram_.set("depthScale", sceneSize);
+  depthProgram_.set("slices", kCullingSlices);
+  position.bindTexture(0);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthMask(GL_FALSE);
+
+  if (!stencilExport_) {
+    if (!boundaryProgram_) boundaryProgram_ = gl::Program::graphics("slice_boundaries.vert", "no_color.frag");
+    glDepthFunc(GL_LEQUAL);  // boundary <= surface depth: one more boundary before the surface
+    glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
+    boundaryProgram_.use();
+    boundaryProgram_.set("slices", kCullingSlices);
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 3, GLsizei(kCullingSlices - 1));
+  }
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glDisable(GL_STENCIL_TEST);
   glDisable(GL_DEPTH_TEST);

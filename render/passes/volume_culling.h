@@ -50,6 +50,7 @@ class VolumeCulling {
   void writeDepthAndSlices(const gl::Texture2D& position, float sceneSize);
   void buildPyramid(const gl::Texture2D& position, float sceneSize);
 
+  bool stencilExport_;          // GL_ARB_shader_stencil_export: slices written with the depth, in one pass
   gl::Texture2D depthStencil_;  // DEPTH32F_STENCIL8
   gl::Texture2D pyramid_;       // R32F, every level
   gl::Program depthProgram_, boundaryProgram_, pyramidProgram_, sortProgram_;
