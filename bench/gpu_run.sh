@@ -6,7 +6,8 @@
 # minutes on a GPU machine with 8+ cores (the build is most of it; --no-build reuses one).
 #
 # Without a hardware GPU (llvmpipe, or no EGL device at all) it says so loudly and runs a reduced
-# version (160x90, 1K/10K VPLs, one frame per point, a few tests) that checks the script end to end:
+# version (160x90, 1K/10K VPLs on data/cornell_box, one frame per point, three tests) that checks the
+# script end to end:
 # ctest runs it that way (test GpuRunReduced, under a minute).
 #
 #   bench/gpu_run.sh [--out DIR] [--build-dir DIR] [--no-build] [--reduced] [--require-gpu] [--jobs N]
@@ -98,11 +99,12 @@ if [[ $mode == full ]]; then
 else
   filter='ContextTest.IsCore45WithComputeShaders:LightPassTest.CulledVolumesShadeWhatCubesShade:LightPassTest.CullingLeavesShadowSelectionUnchanged'
 fi
-LGH_TEST_BACKEND=$backend step tests "$tests" --gtest_filter="$filter" --gtest_output="json:$out/tests.json"
+export LGH_TEST_BACKEND=$backend
+step tests "$tests" --gtest_filter="$filter" --gtest_output="json:$out/tests.json"
 
 # --- 4. The paper's tables.
 sponza="$source_dir/../shared/scenes/sponza_sun/sponza_sun.gltf"
-[[ -f $sponza ]] || sponza="$cornell"
+[[ -f $sponza && $mode == full ]] || sponza="$cornell"  # reduced: the project's own small scene
 camera=()
 [[ $sponza == *sponza_sun* ]] && camera=(--camera atrium)
 if [[ $mode == full ]]; then
@@ -130,6 +132,7 @@ done
   echo "* date: $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git -C "$source_dir" rev-parse --short HEAD 2>/dev/null || echo unknown)"
   echo "* device: $device_line"
   [[ $gpu == 1 ]] || echo "* **NO GPU PRESENT**: the reduced version ran on the software renderer; times say nothing about a GPU"
+  echo "* scene: $sponza ${camera[*]}"
   echo "* sizes: ${width}x${height}, VPLs $vpls (light pass), ${frame_vpls[*]} (frame), $repeats timed frames per point"
   echo "* wall time: $(( $(date +%s) - started )) s; status: $([[ $status == 0 ]] && echo 'all steps passed' || echo 'SOME STEPS FAILED (log.txt)')"
   echo
