@@ -122,8 +122,8 @@ void VolumeCulling::buildPyramid(const gl::Texture2D& position, float sceneSize)
   }
 }
 
-// Counting sort in three dispatches (light_slices.comp): slice and rank, offsets and draw commands,
-// scatter.
+// Stable counting sort (light_slices.comp): slices and ranks in light order, offsets and draw
+// commands, scatter.
 void VolumeCulling::sortBySlice(const SortInputs& in) {
   if (!sortProgram_) sortProgram_ = gl::Program::compute("light_slices.comp");
   gl::ensureSize(sliceAndRank_, std::max<size_t>(in.count, 1) * sizeof(GLuint));
@@ -146,10 +146,21 @@ void VolumeCulling::sortBySlice(const SortInputs& in) {
   p.set("depthScale", in.sceneSize);
   p.set("margin", kCullingMargin);
   p.set("levels", unsigned(in.levels));
-  for (int step = 0; step < 3; ++step) {
+  const GLbitfield barriers = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT;
+  // Step 0 in one work group, in order, a range per dispatch: each invocation loops about 2 x 64 times
+  // per 64 lights, so 16K lights keep it under llvmpipe's 65,535 iterations.
+  constexpr size_t kRankRange = 16384;
+  p.set("step", 0);
+  for (size_t start = 0; start < in.count; start += kRankRange) {
+    p.set("rangeStart", unsigned(start));
+    p.set("rangeCount", unsigned(std::min(kRankRange, in.count - start)));
+    p.dispatch1D(64, 64);
+    glMemoryBarrier(barriers);
+  }
+  for (int step : {1, 2}) {
     p.set("step", step);
     p.dispatch1D(step == 1 ? 1 : std::max<size_t>(in.count, 1), 64);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
+    glMemoryBarrier(barriers);
   }
 }
 
