@@ -20,6 +20,8 @@ const std::vector<std::string> kPasses{passes::kGBuffer,           passes::kDire
                                        passes::kInterleaveResolve, passes::kShadowRays,      passes::kShadowFilter,
                                        passes::kComposite};
 
+const std::string kCubeLightPass = "light pass (cubes)";  // not part of the frame: the same pass with cube volumes
+
 }  // namespace
 
 CLI::App* addFrameCommand(CLI::App& app, FrameBenchOptions& options) {
@@ -31,6 +33,9 @@ CLI::App* addFrameCommand(CLI::App& app, FrameBenchOptions& options) {
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
   command->add_option("--repeats", options.repeats, "timed frames per setting")->check(CLI::PositiveNumber)->capture_default_str();
+  command->add_option("--compare-cubes", options.compareCubes,
+                      "also time the light pass with the paper's cube volumes (row 'light pass (cubes)')")
+      ->capture_default_str();
   command->add_option("--csv", options.csvPath, "also write the per-pass medians as CSV");
   return command;
 }
@@ -59,6 +64,12 @@ int runFrameBench(const FrameBenchOptions& options) {
       if (stats.nonFinitePixels > 0) exitCode = 1;
       for (const std::string& pass : kPasses) times[n][pass].push_back(stats.passMs(pass));
       totals[n].push_back(stats.totalMs());
+      if (options.compareCubes) {
+        // The same frame again (same lights: nothing is rebuilt) with cube volumes, for the ratio.
+        RenderSettings cubes = s;
+        cubes.lightPass.volumeCulling = false;
+        times[n][kCubeLightPass].push_back(bench.renderer().render(cubes).passMs(passes::kLightPass));
+      }
     }
     std::fprintf(stderr, "  %dx%d done\n", n, n);
   }
@@ -85,6 +96,16 @@ int runFrameBench(const FrameBenchOptions& options) {
     }
     table.addRow(row);
   }
+  if (options.compareCubes) {
+    std::vector<std::string> cubes{kCubeLightPass}, ratio{"cubes / culled"};
+    for (int n : options.interleave) {
+      const double cube = spreadOf(times[n][kCubeLightPass]).median, culled = spreadOf(times[n][passes::kLightPass]).median;
+      cubes.push_back(formatMs(cube));
+      ratio.push_back(formatRatio(cube / std::max(culled, 1e-30)));
+    }
+    table.addRow(cubes);
+    table.addRow(ratio);
+  }
   std::vector<std::string> total{"total"}, frags{"fragments/px"};
   for (int n : options.interleave) {
     total.push_back(formatSpread(spreadOf(totals[n])));
@@ -102,6 +123,10 @@ int runFrameBench(const FrameBenchOptions& options) {
       for (const std::string& pass : kPasses) {
         const Spread t = spreadOf(times[n][pass]);
         csv << n << "," << pass << "," << t.median << "," << t.min << "," << t.max << "\n";
+      }
+      if (options.compareCubes) {
+        const Spread c = spreadOf(times[n][kCubeLightPass]);
+        csv << n << "," << kCubeLightPass << "," << c.median << "," << c.min << "," << c.max << "\n";
       }
       const Spread t = spreadOf(totals[n]);
       csv << n << ",total," << t.median << "," << t.min << "," << t.max << "\n";

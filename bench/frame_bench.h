@@ -19,6 +19,7 @@ struct FrameBenchOptions {
   RenderBenchOptions render;
   std::vector<int> interleave{1, 2, 4};
   int repeats = 3;
+  bool compareCubes = true;  // also time the light pass with the paper's cube volumes, frame by frame
   std::string csvPath;
 };
 

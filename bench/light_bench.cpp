@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -19,15 +20,25 @@
 namespace lgh::bench {
 namespace {
 
-// One point of the VPL-count sweep.
-struct SweepRow {
-  size_t target = 0, budget = 0, inputLights = 0;
-  int levels = 0;
-  std::vector<size_t> lightsPerLevel;
+// One way of drawing the light volumes at one point of the sweep: fragment counts and times.
+struct VolumePath {
   double rasterizedPerPixel = 0, shadedPerPixel = 0;
   unsigned maxRasterized = 0;
-  std::vector<double> lightPassMs, buildMs;
-  std::vector<double> bruteForceMs;  // empty when over the limit
+  std::vector<double> lightPassMs;
+  double efficiency() const { return rasterizedPerPixel > 0 ? shadedPerPixel / rasterizedPerPixel : 0.0; }
+  double medianMs() const { return spreadOf(lightPassMs).median; }
+};
+
+// One point of the VPL-count sweep: a VPL count and an interleaving factor.
+struct SweepRow {
+  size_t target = 0, budget = 0, inputLights = 0;
+  int tiles = 1;
+  int levels = 0;
+  std::vector<size_t> lightsPerLevel;
+  VolumePath cubes, culled;          // the paper's cubes, and culled volumes
+  std::vector<double> buildMs;       // 1x1 rows only
+  std::vector<double> bruteForceMs;  // 1x1 rows only; empty when over the limit
+  double speedUp() const { return cubes.medianMs() / std::max(culled.medianMs(), 1e-30); }
 };
 
 // One interleaving factor at a fixed VPL count.
@@ -39,6 +50,228 @@ struct InterleaveRow {
   double errorVsNone = 0;           // relative RMSE against the 1x1 image
   double errorVsExact = -1;         // against the exact unshadowed sum (-1: not measured)
 };
+
+using RenderFrame = std::function<FrameStats(const RenderSettings&)>;
+
+// Cube and culled volumes at `s`: fragment counts from one counted frame each, then `repeats` timed
+// frames of each, alternating, so that a busy machine slows both alike.
+SweepRow measureVolumes(const RenderFrame& frame, RenderSettings s, int repeats) {
+  SweepRow row;
+  row.tiles = s.lightPass.interleave;
+  for (bool culling : {false, true}) {
+    VolumePath& path = culling ? row.culled : row.cubes;
+    s.lightPass.volumeCulling = culling;
+    s.lightPass.overdraw = true;
+    const FrameStats counted = frame(s);
+    path.rasterizedPerPixel = counted.lights.rasterizedPerPixel;
+    path.shadedPerPixel = counted.lights.shadedPerPixel;
+    path.maxRasterized = counted.lights.maxRasterized;
+    row.inputLights = counted.lights.inputLights;
+    row.levels = counted.lights.levels;
+    row.lightsPerLevel = counted.lights.lightsPerLevel;
+  }
+  row.budget = size_t(s.inputLights.vpls);
+  s.lightPass.overdraw = false;  // the counter's atomics would be timed too
+  for (int r = -1; r < repeats; ++r)  // r = -1: untimed, compiles the programs without the counter
+    for (bool culling : {false, true}) {
+      s.lightPass.volumeCulling = culling;
+      const double ms = frame(s).passMs(passes::kLightPass);
+      if (r >= 0) (culling ? row.culled : row.cubes).lightPassMs.push_back(ms);
+    }
+  return row;
+}
+
+// The hierarchy's build time (a new seed rebuilds S0 and the hierarchy) and the brute-force pass.
+void measureBuildAndBruteForce(const RenderFrame& frame, RenderSettings s, int seed, const LightBenchOptions& options,
+                               SweepRow& row) {
+  for (int r = 0; r < options.repeats; ++r) {
+    s.inputLights.seed = seed + 1 + r;
+    row.buildMs.push_back(frame(s).passMs(passes::kLghBuild));
+  }
+  if (row.inputLights <= options.bruteForceLimit) {
+    s.lightPass.bruteForce = true;
+    for (int r = 0; r < std::min(options.repeats, 2); ++r) row.bruteForceMs.push_back(frame(s).passMs(passes::kLightPass));
+  }
+}
+
+void printSweep(const std::vector<SweepRow>& rows, const LightBenchOptions& options) {
+  TextTable sweep({"input lights", "tiles", "L", "grid lights drawn", "fragments/px cube", "culled", "shaded/px",
+                   "efficiency cube", "culled", "light pass ms cube", "culled", "speed-up"});
+  for (const SweepRow& r : rows) {
+    size_t drawn = 0;
+    for (size_t n : r.lightsPerLevel) drawn += n;
+    char eCube[16], eCulled[16];
+    std::snprintf(eCube, sizeof eCube, "%.2f", r.cubes.efficiency());
+    std::snprintf(eCulled, sizeof eCulled, "%.2f", r.culled.efficiency());
+    sweep.addRow({formatCount(r.inputLights), std::to_string(r.tiles) + "x" + std::to_string(r.tiles),
+                  std::to_string(r.levels), formatCount(drawn), formatMs(r.cubes.rasterizedPerPixel),
+                  formatMs(r.culled.rasterizedPerPixel), formatMs(r.culled.shadedPerPixel), eCube, eCulled,
+                  formatSpread(spreadOf(r.cubes.lightPassMs)), formatSpread(spreadOf(r.culled.lightPassMs)),
+                  formatRatio(r.speedUp())});
+  }
+  std::printf("Light pass vs input lights (S0 = VPLs): the paper's cubes and culled volumes, timed alternately\n");
+  sweep.print(stdout);
+  // Growth from the smallest to the largest count, per tiling and path (the paper: x2.4 from 1K to 1M).
+  for (int n : options.tiles) {
+    const SweepRow *a = nullptr, *b = nullptr;
+    for (const SweepRow& r : rows) {
+      if (r.tiles != n) continue;
+      if (!a) a = &r;
+      b = &r;
+    }
+    if (!a || a == b) continue;
+    const double lights = double(b->inputLights) / double(std::max<size_t>(a->inputLights, 1));
+    std::printf("  growth %s -> %s VPLs (x%.0f), %dx%d: fragments/px x%.2f cube, x%.2f culled; light pass x%.2f cube, "
+                "x%.2f culled (paper: x2.4 from 1K to 1M)\n",
+                shortCount(a->target).c_str(), shortCount(b->target).c_str(), lights, n, n,
+                b->cubes.rasterizedPerPixel / std::max(a->cubes.rasterizedPerPixel, 1e-30),
+                b->culled.rasterizedPerPixel / std::max(a->culled.rasterizedPerPixel, 1e-30),
+                b->cubes.medianMs() / std::max(a->cubes.medianMs(), 1e-30),
+                b->culled.medianMs() / std::max(a->culled.medianMs(), 1e-30));
+  }
+  std::printf("\nLGH build and brute force (1x1)\n");
+  TextTable builds({"input lights", "LGH build ms", "brute force ms", "brute force / culled light pass"});
+  // Brute force costs the same per light and pixel at every count: beyond the limit, extrapolate
+  // linearly from the largest count measured (marked as an estimate).
+  const SweepRow* measured = nullptr;
+  for (const SweepRow& r : rows)
+    if (!r.bruteForceMs.empty()) measured = &r;
+  for (const SweepRow& r : rows) {
+    if (r.tiles != 1) continue;
+    std::string brute = "-", ratio = "-";
+    if (measured) {
+      const bool estimate = r.bruteForceMs.empty();
+      const double perLight = spreadOf(measured->bruteForceMs).median / double(std::max<size_t>(measured->inputLights, 1));
+      const double bruteMs = estimate ? perLight * double(r.inputLights) : spreadOf(r.bruteForceMs).median;
+      brute = estimate ? "~" + formatMs(bruteMs) + " (extrapolated)" : formatSpread(spreadOf(r.bruteForceMs));
+      ratio = formatRatio(bruteMs / std::max(r.culled.medianMs(), 1e-30));
+    }
+    builds.addRow({formatCount(r.inputLights), formatSpread(spreadOf(r.buildMs)), brute, ratio});
+  }
+  builds.print(stdout);
+}
+
+
+// Interleaving 1x1 / 2x2 / 4x4 at one VPL count: time, fragments, and the image's mean and error
+// against 1x1 (and the exact sum). Sets `failed` when interleaving changes the mean by more than 1%.
+std::vector<InterleaveRow> measureInterleaving(RenderBench& bench, const RenderFrame& frame,
+                                               const std::vector<SweepRow>& rows, const LightBenchOptions& options,
+                                               bool& failed) {
+  Renderer& renderer = bench.renderer().renderer();
+  const RenderSettings& settings = options.render.settings;
+  RenderSettings s = settings;
+  s.inputLights.vpls = int(options.interleaveVpls);
+  for (const SweepRow& r : rows)  // the budget that met this VPL count in the sweep, if it ran there
+    if (r.target == options.interleaveVpls) s.inputLights.vpls = int(r.budget);
+  std::vector<InterleaveRow> interleaved;
+  std::optional<ImageRGBA> none, exact;
+  for (int n : {1, 2, 4}) {
+    InterleaveRow row;
+    row.n = n;
+    s.lightPass.interleave = n;
+    s.lightPass.overdraw = true;
+    row.rasterizedPerPixel = frame(s).lights.rasterizedPerPixel;
+    s.lightPass.overdraw = false;
+    for (int r = 0; r < options.repeats; ++r) row.lightPassMs.push_back(lightPassMs(frame(s)));
+    const ImageRGBA image = renderer.readImage(Aov::Irradiance);
+    if (n == 1) {
+      none = image;
+      if (options.exactError) {
+        BruteForcePass bruteForce;
+        gl::Texture2D out(settings.image.width, settings.image.height, GL_RGBA32F);
+        bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
+                           renderer.clampDistance(), out);
+        exact = fromGLRows(settings.image.width, settings.image.height, out.readRGBA());
+      }
+    }
+    row.meanRatio = meanLuminance(image) / std::max(meanLuminance(*none), 1e-300);
+    row.errorVsNone = relativeRmse(image, *none);
+    if (exact) row.errorVsExact = relativeRmse(image, *exact);
+    if (std::abs(row.meanRatio - 1.0) > 0.01) {
+      std::fprintf(stderr, "lgh-bench light: %dx%d interleaving changes the mean by %.2f%%\n", n, n,
+                   100.0 * (row.meanRatio - 1.0));
+      failed = true;
+    }
+    interleaved.push_back(row);
+  }
+  return interleaved;
+}
+
+void printInterleaving(const std::vector<InterleaveRow>& interleaved, size_t vpls, size_t inputLights) {
+  std::printf("\nInterleaved sampling at %s VPLs (%s input lights; time = split + light pass + resolve)\n",
+              shortCount(vpls).c_str(), formatCount(inputLights).c_str());
+  TextTable table({"tiles", "fragments/px", "light pass ms", "time vs 1x1", "mean vs 1x1", "rel. RMSE vs 1x1",
+                   "rel. RMSE vs exact"});
+  const double base = std::max(spreadOf(interleaved.front().lightPassMs).median, 1e-30);
+  for (const InterleaveRow& r : interleaved) {
+    char mean[32], e1[32], e2[32];
+    std::snprintf(mean, sizeof mean, "%.4f", r.meanRatio);
+    std::snprintf(e1, sizeof e1, "%.4f", r.errorVsNone);
+    std::snprintf(e2, sizeof e2, "%.4f", r.errorVsExact);
+    table.addRow({std::to_string(r.n) + "x" + std::to_string(r.n), formatMs(r.rasterizedPerPixel),
+                  formatSpread(spreadOf(r.lightPassMs)), formatRatio(spreadOf(r.lightPassMs).median / base), mean, e1,
+                  r.errorVsExact < 0 ? "-" : e2});
+  }
+  table.print(stdout);
+}
+
+void writeCsv(std::ostream& csv, const std::vector<SweepRow>& rows, const std::vector<InterleaveRow>& interleaved,
+              size_t interleaveInputLights, const LightBenchOptions& options) {
+  csv << "table,input_lights,vpl_budget,levels,interleave,volumes,fragments_per_pixel,shaded_per_pixel,efficiency,"
+         "light_pass_ms_median,light_pass_ms_min,light_pass_ms_max,brute_force_ms_median,build_ms_median,"
+         "error_vs_1x1,error_vs_exact\n";
+  for (const SweepRow& r : rows)
+    for (bool culling : {false, true}) {
+      const VolumePath& p = culling ? r.culled : r.cubes;
+      const Spread t = spreadOf(p.lightPassMs);
+      csv << "vpls," << r.inputLights << "," << r.budget << "," << r.levels << "," << r.tiles << ","
+          << (culling ? "culled" : "cube") << "," << p.rasterizedPerPixel << "," << p.shadedPerPixel << ","
+          << p.efficiency() << "," << t.median << "," << t.min << "," << t.max << ","
+          << (r.bruteForceMs.empty() ? std::string() : std::to_string(spreadOf(r.bruteForceMs).median)) << ","
+          << (r.buildMs.empty() ? std::string() : std::to_string(spreadOf(r.buildMs).median)) << ",,\n";
+    }
+  const bool culled = options.render.settings.lightPass.volumeCulling;
+  for (const InterleaveRow& r : interleaved) {
+    const Spread t = spreadOf(r.lightPassMs);
+    csv << "interleave," << interleaveInputLights << "," << options.interleaveVpls << ",," << r.n << ","
+        << (culled ? "culled" : "cube") << "," << r.rasterizedPerPixel << ",,," << t.median << "," << t.min << ","
+        << t.max << ",,," << r.errorVsNone << "," << (r.errorVsExact < 0 ? std::string() : std::to_string(r.errorVsExact))
+        << "\n";
+  }
+}
+
+void writeJson(std::ostream& out, RenderBench& bench, const std::vector<SweepRow>& rows,
+               const std::vector<InterleaveRow>& interleaved, const LightBenchOptions& options) {
+  const RenderSettings& settings = options.render.settings;
+  nlohmann::json j;
+  j["scene"] = bench.scenePath().string();
+  j["device"] = bench.context().description();
+  j["width"] = settings.image.width;
+  j["height"] = settings.image.height;
+  j["alpha"] = settings.lightPass.alpha;
+  j["start_level"] = settings.lightPass.startLevel;
+  auto volumes = [](const VolumePath& p) {
+    return nlohmann::json{{"fragments_per_pixel", p.rasterizedPerPixel}, {"max_fragments", p.maxRasterized},
+                          {"shaded_per_pixel", p.shadedPerPixel}, {"efficiency", p.efficiency()},
+                          {"light_pass_ms", p.lightPassMs}};
+  };
+  for (const SweepRow& r : rows)
+    j["vpls"].push_back({{"input_lights", r.inputLights}, {"vpl_budget", r.budget}, {"levels", r.levels},
+                         {"interleave", r.tiles}, {"lights_per_level", r.lightsPerLevel}, {"cube", volumes(r.cubes)},
+                         {"culled", volumes(r.culled)}, {"speed_up", r.speedUp()}, {"build_ms", r.buildMs},
+                         {"brute_force_ms", r.bruteForceMs}});
+  for (const InterleaveRow& r : interleaved)
+    j["interleave"].push_back({{"n", r.n}, {"fragments_per_pixel", r.rasterizedPerPixel},
+                               {"light_pass_ms", r.lightPassMs}, {"mean_ratio", r.meanRatio},
+                               {"error_vs_1x1", r.errorVsNone}, {"error_vs_exact", r.errorVsExact}});
+  out << j.dump(2) << "\n";
+}
+
+std::ofstream openForWriting(const std::string& path) {
+  std::ofstream f(path);
+  if (!f) throw std::runtime_error(path + ": cannot open for writing");
+  return f;
+}
 
 }  // namespace
 
@@ -53,6 +286,10 @@ CLI::App* addLightCommand(CLI::App& app, LightBenchOptions& options) {
   command->add_option("--vpls", options.vplCounts, "VPL counts, comma-separated (1K, 1M allowed)")
       ->delimiter(',')
       ->transform(CLI::AsNumberWithUnit(thousands))
+      ->capture_default_str();
+  command->add_option("--tiles", options.tiles, "interleaving factors of the VPL-count sweep, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::Range(1, int(gpu::kMaxInterleave)))
       ->capture_default_str();
   command->add_option("--repeats", options.repeats, "timed frames per point")->check(CLI::PositiveNumber)->capture_default_str();
   command->add_option("--brute-force-limit", options.bruteForceLimit, "time the brute-force pass up to this many lights")
@@ -69,14 +306,10 @@ CLI::App* addLightCommand(CLI::App& app, LightBenchOptions& options) {
 }
 
 int runLightBench(const LightBenchOptions& options) {
+  // Outputs are opened first: a bad path fails before minutes of measuring.
   std::optional<std::ofstream> csv, json;
-  auto open = [](const std::string& path) {
-    std::ofstream f(path);
-    if (!f) throw std::runtime_error(path + ": cannot open for writing");
-    return f;
-  };
-  if (!options.csvPath.empty()) csv = open(options.csvPath);
-  if (!options.jsonPath.empty()) json = open(options.jsonPath);
+  if (!options.csvPath.empty()) csv = openForWriting(options.csvPath);
+  if (!options.jsonPath.empty()) json = openForWriting(options.jsonPath);
 
   RenderBench bench(options.render);
   Renderer& renderer = bench.renderer().renderer();
@@ -90,175 +323,41 @@ int runLightBench(const LightBenchOptions& options) {
       "glFinish-bracketed ms\n\n",
       double(renderer.clampDistance()), double(settings.lightPass.alpha), settings.lightPass.startLevel, bounces,
       bounces == 1 ? "" : "s", options.repeats);
-  int exitCode = 0;
-
-  // Renders with `s` (rebuilding lights when they changed) and returns the frame's stats.
-  auto finite = [&](const FrameStats& stats) {
+  bool failed = false;
+  // Renders with `s` (rebuilding lights when they changed); a NaN/Inf pixel fails the run.
+  const RenderFrame frame = [&](const RenderSettings& s) {
+    const FrameStats stats = bench.renderer().render(s);
     if (stats.nonFinitePixels > 0) {
       std::fprintf(stderr, "lgh-bench light: %u NaN/Inf pixels\n", stats.nonFinitePixels);
-      exitCode = 1;
+      failed = true;
     }
     return stats;
   };
-  auto frame = [&](const RenderSettings& s) { return finite(bench.renderer().render(s)); };
 
-  // --- Overdraw and light-pass time vs VPL count.
+  // --- Overdraw and light-pass time vs VPL count, cube and culled volumes.
   std::vector<SweepRow> rows;
   for (size_t target : options.vplCounts) {
-    SweepRow row;
-    row.target = target;
     RenderSettings s = settings;
-    s.lightPass.overdraw = true;
-    const FrameStats counted = finite(bench.renderer().renderToVplTarget(s, target));
-    row.budget = size_t(s.inputLights.vpls);
-    row.inputLights = counted.lights.inputLights;
-    row.levels = counted.lights.levels;
-    row.lightsPerLevel = counted.lights.lightsPerLevel;
-    row.rasterizedPerPixel = counted.lights.rasterizedPerPixel;
-    row.shadedPerPixel = counted.lights.shadedPerPixel;
-    row.maxRasterized = counted.lights.maxRasterized;
-    s.lightPass.overdraw = false;  // the counter's atomics would be timed too
-    for (int r = 0; r < options.repeats; ++r) row.lightPassMs.push_back(frame(s).passMs(passes::kLightPass));
-    // The build is timed by changing the seed, which rebuilds S0 and the hierarchy.
-    for (int r = 0; r < options.repeats; ++r) {
-      s.inputLights.seed = settings.inputLights.seed + 1 + r;
-      row.buildMs.push_back(frame(s).passMs(passes::kLghBuild));
-    }
-    if (row.inputLights <= options.bruteForceLimit) {
-      s.lightPass.bruteForce = true;
-      for (int r = 0; r < std::min(options.repeats, 2); ++r)
-        row.bruteForceMs.push_back(frame(s).passMs(passes::kLightPass));
-    }
-    rows.push_back(row);
-    std::fprintf(stderr, "  %s VPLs done\n", shortCount(target).c_str());
-  }
-
-  TextTable sweep({"input lights", "L", "grid lights drawn", "fragments/px", "max", "shaded/px", "light pass ms",
-                   "brute force ms", "LGH build ms"});
-  for (const SweepRow& r : rows) {
-    size_t drawn = 0;
-    for (size_t n : r.lightsPerLevel) drawn += n;
-    sweep.addRow({formatCount(r.inputLights), std::to_string(r.levels), formatCount(drawn), formatMs(r.rasterizedPerPixel),
-                  formatCount(r.maxRasterized), formatMs(r.shadedPerPixel), formatSpread(spreadOf(r.lightPassMs)),
-                  r.bruteForceMs.empty() ? "-" : formatSpread(spreadOf(r.bruteForceMs)),
-                  formatSpread(spreadOf(r.buildMs))});
-  }
-  std::printf("Light pass vs input lights (S0 = VPLs)\n");
-  sweep.print(stdout);
-  if (rows.size() >= 2) {
-    const SweepRow &a = rows.front(), &b = rows.back();
-    std::printf("  growth %s -> %s VPLs (x%.0f): fragments/px x%.2f, light pass x%.2f\n", shortCount(a.target).c_str(),
-                shortCount(b.target).c_str(), double(b.inputLights) / double(std::max<size_t>(a.inputLights, 1)),
-                b.rasterizedPerPixel / std::max(a.rasterizedPerPixel, 1e-30),
-                spreadOf(b.lightPassMs).median / std::max(spreadOf(a.lightPassMs).median, 1e-30));
-  }
-  // Brute force costs the same per light and pixel at every count: beyond the limit, extrapolate
-  // linearly from the largest count measured (marked as an estimate).
-  const SweepRow* measured = nullptr;
-  for (const SweepRow& r : rows)
-    if (!r.bruteForceMs.empty()) measured = &r;
-  if (measured) {
-    const double perLight = spreadOf(measured->bruteForceMs).median / double(std::max<size_t>(measured->inputLights, 1));
-    for (const SweepRow& r : rows) {
-      const bool estimate = r.bruteForceMs.empty();
-      const double bruteMs = estimate ? perLight * double(r.inputLights) : spreadOf(r.bruteForceMs).median;
-      std::printf("  brute force / LGH light pass at %s VPLs: %s%s\n", shortCount(r.target).c_str(),
-                  formatRatio(bruteMs / std::max(spreadOf(r.lightPassMs).median, 1e-30)).c_str(),
-                  estimate ? " (brute force extrapolated linearly)" : "");
+    bench.renderer().renderToVplTarget(s, target);  // leaves the budget that meets the target in s
+    for (int n : options.tiles) {
+      s.lightPass.interleave = n;
+      rows.push_back(measureVolumes(frame, s, options.repeats));
+      rows.back().target = target;
+      if (n == 1) measureBuildAndBruteForce(frame, s, settings.inputLights.seed, options, rows.back());
+      std::fprintf(stderr, "  %s VPLs %dx%d done\n", shortCount(target).c_str(), n, n);
     }
   }
+  printSweep(rows, options);
 
   // --- Interleaving at one VPL count.
   std::vector<InterleaveRow> interleaved;
   if (options.interleaveVpls > 0) {
-    RenderSettings s = settings;
-    s.inputLights.vpls = int(options.interleaveVpls);
-    for (const SweepRow& r : rows)  // the budget that met this VPL count in the sweep, if it ran there
-      if (r.target == options.interleaveVpls) s.inputLights.vpls = int(r.budget);
-    std::optional<ImageRGBA> none, exact;
-    for (int n : {1, 2, 4}) {
-      InterleaveRow row;
-      row.n = n;
-      s.lightPass.interleave = n;
-      s.lightPass.overdraw = true;
-      row.rasterizedPerPixel = frame(s).lights.rasterizedPerPixel;
-      s.lightPass.overdraw = false;
-      for (int r = 0; r < options.repeats; ++r) row.lightPassMs.push_back(lightPassMs(frame(s)));
-      const ImageRGBA image = renderer.readImage(Aov::Irradiance);
-      if (n == 1) {
-        none = image;
-        if (options.exactError) {
-          BruteForcePass bruteForce;
-          gl::Texture2D out(settings.image.width, settings.image.height, GL_RGBA32F);
-          bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
-                             renderer.clampDistance(), out);
-          exact = fromGLRows(settings.image.width, settings.image.height, out.readRGBA());
-        }
-      }
-      row.meanRatio = meanLuminance(image) / std::max(meanLuminance(*none), 1e-300);
-      row.errorVsNone = relativeRmse(image, *none);
-      if (exact) row.errorVsExact = relativeRmse(image, *exact);
-      if (std::abs(row.meanRatio - 1.0) > 0.01) {
-        std::fprintf(stderr, "lgh-bench light: %dx%d interleaving changes the mean by %.2f%%\n", n, n,
-                     100.0 * (row.meanRatio - 1.0));
-        exitCode = 1;
-      }
-      interleaved.push_back(row);
-    }
-    std::printf("\nInterleaved sampling at %s VPLs (%s input lights; time = split + light pass + resolve)\n",
-                shortCount(options.interleaveVpls).c_str(), formatCount(renderer.inputLights().count).c_str());
-    TextTable table({"tiles", "fragments/px", "light pass ms", "time vs 1x1", "mean vs 1x1", "rel. RMSE vs 1x1",
-                     "rel. RMSE vs exact"});
-    for (const InterleaveRow& r : interleaved) {
-      char mean[32], e1[32], e2[32];
-      std::snprintf(mean, sizeof mean, "%.4f", r.meanRatio);
-      std::snprintf(e1, sizeof e1, "%.4f", r.errorVsNone);
-      std::snprintf(e2, sizeof e2, "%.4f", r.errorVsExact);
-      table.addRow({std::to_string(r.n) + "x" + std::to_string(r.n), formatMs(r.rasterizedPerPixel),
-                    formatSpread(spreadOf(r.lightPassMs)),
-                    formatRatio(spreadOf(r.lightPassMs).median / std::max(spreadOf(interleaved.front().lightPassMs).median, 1e-30)),
-                    mean, e1, r.errorVsExact < 0 ? "-" : e2});
-    }
-    table.print(stdout);
+    interleaved = measureInterleaving(bench, frame, rows, options, failed);
+    printInterleaving(interleaved, options.interleaveVpls, renderer.inputLights().count);
   }
-
-  if (csv) {
-    *csv << "table,input_lights,vpl_budget,levels,interleave,fragments_per_pixel,shaded_per_pixel,light_pass_ms_median,"
-            "light_pass_ms_min,light_pass_ms_max,brute_force_ms_median,build_ms_median,error_vs_1x1,error_vs_exact\n";
-    for (const SweepRow& r : rows) {
-      const Spread t = spreadOf(r.lightPassMs);
-      *csv << "vpls," << r.inputLights << "," << r.budget << "," << r.levels << ",1," << r.rasterizedPerPixel << ","
-           << r.shadedPerPixel << "," << t.median << "," << t.min << "," << t.max << ","
-           << (r.bruteForceMs.empty() ? std::string() : std::to_string(spreadOf(r.bruteForceMs).median)) << ","
-           << spreadOf(r.buildMs).median << ",,\n";
-    }
-    for (const InterleaveRow& r : interleaved) {
-      const Spread t = spreadOf(r.lightPassMs);
-      *csv << "interleave," << renderer.inputLights().count << "," << options.interleaveVpls << ",," << r.n << ","
-           << r.rasterizedPerPixel << ",," << t.median << "," << t.min << "," << t.max << ",,," << r.errorVsNone << ","
-           << (r.errorVsExact < 0 ? std::string() : std::to_string(r.errorVsExact)) << "\n";
-    }
-  }
-  if (json) {
-    nlohmann::json j;
-    j["scene"] = bench.scenePath().string();
-    j["device"] = bench.context().description();
-    j["width"] = settings.image.width;
-    j["height"] = settings.image.height;
-    j["alpha"] = settings.lightPass.alpha;
-    j["start_level"] = settings.lightPass.startLevel;
-    for (const SweepRow& r : rows)
-      j["vpls"].push_back({{"input_lights", r.inputLights}, {"vpl_budget", r.budget}, {"levels", r.levels},
-                           {"lights_per_level", r.lightsPerLevel}, {"fragments_per_pixel", r.rasterizedPerPixel},
-                           {"max_fragments", r.maxRasterized}, {"shaded_per_pixel", r.shadedPerPixel},
-                           {"light_pass_ms", r.lightPassMs}, {"build_ms", r.buildMs}, {"brute_force_ms", r.bruteForceMs}});
-    for (const InterleaveRow& r : interleaved)
-      j["interleave"].push_back({{"n", r.n}, {"fragments_per_pixel", r.rasterizedPerPixel}, {"light_pass_ms", r.lightPassMs},
-                                 {"mean_ratio", r.meanRatio}, {"error_vs_1x1", r.errorVsNone},
-                                 {"error_vs_exact", r.errorVsExact}});
-    *json << j.dump(2) << "\n";
-  }
-  return exitCode;
+  if (csv) writeCsv(*csv, rows, interleaved, renderer.inputLights().count, options);
+  if (json) writeJson(*json, bench, rows, interleaved, options);
+  return failed ? 1 : 0;
 }
 
 }  // namespace lgh::bench

@@ -12,6 +12,12 @@
 #include "shared/shadow_selection.glsl"
 #endif
 
+#ifdef LGH_DEPTH_CULLED
+// The depth test runs before the shader, so fragments over surfaces behind the volume are never
+// shaded nor counted (the counter below is a side effect, which would otherwise force late tests).
+layout(early_fragment_tests) in;
+#endif
+
 layout(std140, binding = LGH_UBO_PASS) uniform LightPass { LightPassUniforms pass; };
 // The G-buffer in the target's layout (de-interleaved into tiles when interleaving).
 layout(binding = 0) uniform sampler2D surfacePosition;
@@ -40,15 +46,15 @@ void main() {
   if (blend == 0.0) discard;
   vec3 n = texelFetch(surfaceNormal, pixel, 0).xyz;
   vec3 e = lightContribution(lightPosition, lightIntensity, lightLobe.xyz, lightLobe.w, position.xyz, n,
-                             pass.alphaTopCellClampScale.z);
+                             pass.clampDistance);
   irradiance = vec4(blend * e, 1.0);
 #ifdef LGH_SELECT_SHADOWS
   bool finest = uint(lightBlend.y) == kRoleFinest;
-  if (!(finest && (pass.selection.y & kSelectSkipFinest) != 0u)) {
+  if (!(finest && (pass.selectFlags & kSelectSkipFinest) != 0u)) {
     float importance = dot(irradiance.rgb, vec3(0.2126, 0.7152, 0.0722));
-    if ((pass.selection.y & kSelectUniform) != 0u && importance > 0.0) importance = 1.0;
-    uint pixelIndex = uint(pixel.y) * (pass.tiles.x * pass.tiles.y) + uint(pixel.x);
-    selectShadowSample(pixelIndex, lightId, importance, pass.selection.x, pass.selection.z);
+    if ((pass.selectFlags & kSelectUniform) != 0u && importance > 0.0) importance = 1.0;
+    uint pixelIndex = uint(pixel.y) * (pass.tilesPerAxis * pass.tileWidth) + uint(pixel.x);
+    selectShadowSample(pixelIndex, lightId, importance, pass.shadowSamples, pass.frameSeed);
   }
 #endif
 }

@@ -1,13 +1,21 @@
 #version 450 core
-// One grid light per instance, drawn as a cube of half-size 2R (the support of its blending function)
-// or, for the top level and brute force, as a full-screen triangle. With n x n interleaving the light
-// is drawn into one tile only: its clip-space position is mapped into that tile's block of the
-// de-interleaved target and clipped to it with four clip distances.
+// One light per instance, drawn as its light volume: the region where its blending weight can be
+// non-zero, d < 2R. Three shapes (pass.volumeShape):
+//   full screen  the top level and brute force (weight non-zero at any distance): one triangle;
+//   cube         the paper's cube of half-size 2R, 36 vertices, no depth test;
+//   culled       the screen octagon that bounds the 2R sphere (8 vertices, a strip), at the depth
+//                of the sphere's far side: the depth test against the surfaces (light_depth.frag)
+//                rejects every pixel whose surface lies behind the sphere before it is shaded; and
+//                not drawn at all when every surface under the rectangle lies in front of the
+//                sphere (the light is hidden), read from a max-depth pyramid (light_depth_pyramid.comp).
+//                Grid lights come sorted by the depth slice of their sphere's near side and are drawn
+//                with that slice as stencil reference: pixels whose surface lies in a nearer slice
+//                are rejected before shading too (render/passes/volume_culling.h).
+// With n x n interleaving the light is drawn into one tile only: its clip-space position is mapped
+// into that tile's block of the de-interleaved target and clipped to it with four clip distances.
 #include "shared/frame.glsl"
 #include "shared/light_pass_types.h"
-#include "shared/lgh_shading.glsl"
-#include "shared/lgh_types.h"
-#include "shared/octahedral.h"
+#include "shared/light_levels.h"
 
 layout(std140, binding = LGH_UBO_PASS) uniform LightPass { LightPassUniforms pass; };
 #ifdef LGH_S0_INPUT
@@ -15,6 +23,12 @@ layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight li
 #else
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer GridLights { GpuGridLight lights[]; };
 #endif
+#ifdef LGH_SORTED_LIGHTS
+// Culled grid lights drawn slice by slice (VolumeCulling::drawSorted): the light's index in the buffer.
+layout(location = 0) in uint sortedLightIndex;
+#endif
+// Deepest culling depth of the surfaces per texel of each level, in the target's (tiled) layout.
+layout(binding = 2) uniform sampler2D surfaceDepthPyramid;
 
 out gl_PerVertex {
   vec4 gl_Position;
@@ -31,64 +45,125 @@ flat out uint lightId;      // for shadow-sample selection: kSlotS0 | S0 index, 
 const uint kCubeIndices[36] = uint[](0u, 2u, 1u, 1u, 2u, 3u, 4u, 5u, 6u, 5u, 7u, 6u, 0u, 1u, 4u, 1u, 5u, 4u,
                                      2u, 6u, 3u, 3u, 6u, 7u, 0u, 4u, 2u, 2u, 4u, 6u, 1u, 3u, 5u, 3u, 7u, 5u);
 
-uint levelOf(uint index) {
-#ifdef LGH_S0_INPUT
-  return 0u;
-#else
-  return lights[index].level;
-#endif
+// Relative widening of the culled volume: the rectangle and the far depth are computed in float in
+// another order than the surfaces' depth, and the weight at the edge (d -> 2R) is ~0 anyway.
+const float kCullingMargin = 1e-3;
+
+vec4 fullScreenCorner() {
+  vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+  return vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+
+vec4 cubeCorner(float radius) {
+  uint c = kCubeIndices[gl_VertexID];
+  vec3 corner = vec3(float(c & 1u), float((c >> 1u) & 1u), float((c >> 2u) & 1u)) * 2.0 - 1.0;
+  vec4 clip = frame.viewProjection * vec4(lightPosition + radius * corner, 1.0);
+  clip.z = 0.0;  // no depth test; never clipped by near/far as long as w > 0
+  return clip;
+}
+
+// Where a light's tile lies in the target: target NDC = scale * full-resolution NDC + offset (w = 1),
+// and the tile's block [lo, hi] in target NDC.
+struct TileMap {
+  vec2 scale, offset, lo, hi;
+};
+
+// Interleaving: this light belongs to tile (k mod n^2) of its level, k its index within the level.
+TileMap tileOf(uint index, uint level) {
+  uint n = pass.tilesPerAxis;
+  uint levelStart = pass.levelOffsets[level / 4u][level % 4u];
+  uint tile = (index + pass.boundLightOffset - levelStart) % (n * n);
+  vec2 t = vec2(float(tile % n), float(tile / n));
+  vec2 tileSize = vec2(pass.tileWidth, pass.tileHeight), full = vec2(pass.imageWidth, pass.imageHeight);
+  // Full-resolution window x maps to tile-local x' = (x - t - 0.5) / n + 0.5, placed at t * tileSize.
+  TileMap m;
+  m.scale = full / (float(n * n) * tileSize);
+  m.offset = 2.0 * (t * tileSize + (0.5 * full - t - 0.5) / float(n) + 0.5) / (float(n) * tileSize) - 1.0;
+  m.lo = 2.0 * t / float(n) - 1.0;
+  m.hi = 2.0 * (t + 1.0) / float(n) - 1.0;
+  return m;
+}
+
+// Maps the full-resolution clip position into the tile's block and clips it there.
+vec4 toTile(vec4 clip, TileMap m) {
+  vec4 tiled = vec4(m.scale * clip.xy + m.offset * clip.w, clip.z, clip.w);
+  gl_ClipDistance[0] = tiled.x - m.lo.x * tiled.w;
+  gl_ClipDistance[1] = m.hi.x * tiled.w - tiled.x;
+  gl_ClipDistance[2] = tiled.y - m.lo.y * tiled.w;
+  gl_ClipDistance[3] = m.hi.y * tiled.w - tiled.y;
+  return tiled;
+}
+
+// True when every surface under the target-NDC rectangle lies in front of culling depth `nearDepth`
+// (or there is none): the deepest over at most 2 x 2 texels of the pyramid level whose texels are at
+// least as large as the rectangle.
+bool surfacesInFront(vec4 rect, float nearDepth) {
+  vec2 size = vec2(textureSize(surfaceDepthPyramid, 0));
+  vec2 lo = clamp((rect.xy * 0.5 + 0.5) * size, vec2(0.0), size - 1.0);
+  vec2 hi = clamp((rect.zw * 0.5 + 0.5) * size, vec2(0.0), size - 1.0);
+  int top = textureQueryLevels(surfaceDepthPyramid) - 1;
+  int level = clamp(int(ceil(log2(max(max(hi.x - lo.x, hi.y - lo.y), 1.0)))), 0, top);
+  ivec2 last = textureSize(surfaceDepthPyramid, level) - 1;
+  ivec2 a = min(ivec2(lo) >> level, last), b = min(ivec2(hi) >> level, last);
+  float deepest = 0.0;
+  for (int y = a.y; y <= b.y; ++y)
+    for (int x = a.x; x <= b.x; ++x) deepest = max(deepest, texelFetch(surfaceDepthPyramid, ivec2(x, y), level).r);
+  return deepest < nearDepth;
+}
+
+// The octagon's corners in triangle-strip order (a zigzag across the convex polygon).
+const uint kOctagonStrip[8] = uint[](0u, 1u, 7u, 2u, 6u, 3u, 5u, 4u);
+
+// A corner of the strip of the NDC octagon bounding the sphere (its rectangle with the corners cut by
+// the diagonal tangents), at the culling depth of its far side (the depth test passes where the
+// surface is not behind the sphere). The camera inside or beside the sphere: the whole viewport.
+// Nothing drawn (a degenerate rectangle) for a sphere wholly behind the eye, or one that every
+// surface under its rectangle hides.
+vec4 culledCorner(float radius, TileMap tile) {
+  const vec4 nothing = vec4(0.0, 0.0, 0.0, 1.0);
+  float r = radius * (1.0 + kCullingMargin);
+  vec2 wRange = sphereClipWRange(frame.viewProjection, lightPosition, r);
+  if (wRange.y <= 0.0) return nothing;
+  vec4 bounds, diagonals;
+  if (!projectedSphereBounds(frame.viewProjection, lightPosition, r, bounds, diagonals)) {
+    bounds = vec4(-1.0, -1.0, 1.0, 1.0);
+    diagonals = vec4(-2.0, -2.0, 2.0, 2.0);
+  }
+  bounds = clamp(bounds, -1.0, 1.0);  // also keeps far-off polygons away from the rasterizer's guard band
+  vec4 inTile = clamp(vec4(tile.scale, tile.scale) * bounds + vec4(tile.offset, tile.offset), tile.lo.xyxy, tile.hi.xyxy);
+  float nearDepth = cullingDepth(wRange.x * (1.0 - kCullingMargin), pass.cullingDepthScale);
+  if (surfacesInFront(inTile, nearDepth)) return nothing;
+  float farDepth = cullingDepth(wRange.y * (1.0 + kCullingMargin), pass.cullingDepthScale);
+  return vec4(octagonCorner(bounds, diagonals, kOctagonStrip[gl_VertexID]), 2.0 * farDepth - 1.0, 1.0);
 }
 
 void main() {
-  uint index = pass.levels.z + uint(gl_InstanceID);
-  uint level = levelOf(index);
-#ifdef LGH_S0_INPUT
-  lightId = kSlotS0 | (index + pass.tiles.w);
-  GpuLight l = lights[index];
-  lightPosition = l.position;
-  lightIntensity = l.intensity;
-  bool oriented = (l.flags & kLightOriented) != 0u;
-  lightLobe = oriented ? vec4(octDecode(l.normalOct), 0.0) : vec4(0.0, 0.0, 0.0, 1.0);
+#ifdef LGH_SORTED_LIGHTS
+  uint index = sortedLightIndex;
 #else
-  lightId = index;
-  GpuGridLight l = lights[index];
-  lightPosition = l.position;
-  lightIntensity = l.intensity;
-  lightLobe = vec4(l.meanNormal, l.omniFraction);
+  uint index = pass.instanceOffset + uint(gl_InstanceID);
 #endif
-  lightIntensity *= pass.alphaTopCellClampScale.w;
-  // R_l = alpha h_l, h_l = H 2^(l - L); h_0 = h_1 / 2 by the same formula.
-  float R = pass.alphaTopCellClampScale.x * pass.alphaTopCellClampScale.y *
-            exp2(float(int(level) - int(pass.levels.y)));
-  uint role = pass.image.z != 0u ? kRoleOnly : levelRole(level, pass.levels.x, pass.levels.y);
+#ifdef LGH_S0_INPUT
+  ShadedLight l = decodeInputLight(lights[index]);
+  lightId = kSlotS0 | (index + pass.boundLightOffset);
+#else
+  ShadedLight l = decodeGridLight(lights[index]);
+  lightId = index;
+#endif
+  lightPosition = l.position;
+  lightIntensity = l.intensity * pass.contributionScale;
+  lightLobe = vec4(l.meanNormal, l.omniFraction);
+  float R = levelRadius(pass.alpha, pass.topCellSize, l.level, pass.levels);
+  uint role = pass.bruteForce != 0u ? kRoleOnly : levelRole(l.level, pass.firstLevel, pass.levels);
   lightBlend = vec2(R, float(role));
 
+  TileMap tile = tileOf(index, l.level);
   vec4 clip;
-  if (pass.levels.w != 0u) {
-    // Full-screen triangle covering the viewport.
-    vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-    clip = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-  } else {
-    uint c = kCubeIndices[gl_VertexID];
-    vec3 corner = vec3(float(c & 1u), float((c >> 1u) & 1u), float((c >> 2u) & 1u)) * 2.0 - 1.0;
-    clip = frame.viewProjection * vec4(lightPosition + 2.0 * R * corner, 1.0);
-    clip.z = 0.0;  // no depth test; never clipped by near/far as long as w > 0
-  }
-
-  // Interleaving: this light belongs to tile (k mod n^2) of its level, k its index within the level.
-  uint n = pass.tiles.x;
-  uint levelStart = pass.levelOffsets[level / 4u][level % 4u];
-  uint tile = (index + pass.tiles.w - levelStart) % (n * n);
-  vec2 t = vec2(float(tile % n), float(tile / n));
-  vec2 tileSize = vec2(pass.tiles.yz), full = vec2(pass.image.xy);
-  // Full-resolution window x maps to tile-local x' = (x - t - 0.5) / n + 0.5, placed at t * tileSize.
-  vec2 a = full / (float(n * n) * tileSize);
-  vec2 b = 2.0 * (t * tileSize + (0.5 * full - t - 0.5) / float(n) + 0.5) / (float(n) * tileSize) - 1.0;
-  vec4 tiled = vec4(a * clip.xy + b * clip.w, clip.z, clip.w);
-  vec2 lo = 2.0 * t / float(n) - 1.0, hi = 2.0 * (t + 1.0) / float(n) - 1.0;
-  gl_ClipDistance[0] = tiled.x - lo.x * tiled.w;
-  gl_ClipDistance[1] = hi.x * tiled.w - tiled.x;
-  gl_ClipDistance[2] = tiled.y - lo.y * tiled.w;
-  gl_ClipDistance[3] = hi.y * tiled.w - tiled.y;
-  gl_Position = tiled;
+  if (pass.volumeShape == kVolumeFullScreen)
+    clip = fullScreenCorner();
+  else if (pass.volumeShape == kVolumeCube)
+    clip = cubeCorner(2.0 * R);
+  else
+    clip = culledCorner(2.0 * R, tile);
+  gl_Position = toTile(clip, tile);
 }

@@ -9,6 +9,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/bvh_traverse.glsl"
 #include "shared/lgh_shading.glsl"
 #include "shared/lgh_types.h"
+#include "shared/light_levels.h"
 #include "shared/light_pass_types.h"
 #include "shared/octahedral.h"
 #include "shared/ray_offset.h"
@@ -61,31 +62,23 @@ void main() {
     for (uint j = 0u; j < samples; ++j) {
       uint id = shadowSlots[pixelIndex * samples + j];
       if (id == kNoLight) continue;
-      vec3 lightPosition, intensity, lobeNormal, sigma = vec3(0.0);
-      float omni, weight = 1.0;
-      uint level = 0u;
+      vec3 sigma = vec3(0.0);
+      ShadedLight light;
       if ((id & kSlotS0) != 0u) {
-        GpuLight l = inputLights[id & ~kSlotS0];
-        lightPosition = l.position;
-        intensity = l.intensity;
-        bool oriented = (l.flags & kLightOriented) != 0u;
-        lobeNormal = oriented ? octDecode(l.normalOct) : vec3(0.0);
-        omni = oriented ? 0.0 : 1.0;
+        light = decodeInputLight(inputLights[id & ~kSlotS0]);
       } else {
-        GpuGridLight g = gridLights[id];
-        lightPosition = g.position;
-        intensity = g.intensity;
-        lobeNormal = g.meanNormal;
-        omni = g.omniFraction;
-        sigma = sqrt(max(g.variance, vec3(0.0)));
-        level = g.level;
+        light = decodeGridLight(gridLights[id]);
+        sigma = sqrt(max(gridLights[id].variance, vec3(0.0)));
       }
+      vec3 lightPosition = light.position;
+      float weight = 1.0;
       if (uniformSelection != 0) {
         // Uniform selection: weight each visibility by the light's contribution here.
-        float R = alpha * topCellSize * exp2(float(int(level) - int(levels)));
-        uint role = bruteForce != 0 ? kRoleOnly : levelRole(level, firstLevel, levels);
+        float R = levelRadius(alpha, topCellSize, light.level, levels);
+        uint role = bruteForce != 0 ? kRoleOnly : levelRole(light.level, firstLevel, levels);
         vec3 e = blendWeight(role, distance(lightPosition, s.position), R) *
-                 lightContribution(lightPosition, intensity, lobeNormal, omni, s.position, s.normal, clampDistance);
+                 lightContribution(lightPosition, light.intensity, light.meanNormal, light.omniFraction, s.position,
+                                   s.normal, clampDistance);
         weight = dot(e, vec3(0.2126, 0.7152, 0.0722));
       }
       vec3 jitter = vec3(raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)));

@@ -119,6 +119,7 @@ LightPassOptions Renderer::lightPassOptions() const {
   o.pass = settings_.lightPass;
   o.shadows = settings_.shadows;
   o.clampDistance = clampDistance();
+  o.sceneSize = std::max(scene_.scene().bounds.diagonal(), 1e-6f);
   o.frameSeed = frameIndex_ * 0x9e3779b9u + unsigned(settings_.inputLights.seed);
   return o;
 }

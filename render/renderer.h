@@ -58,6 +58,8 @@ struct LightStats {
   // overdraw), fragments that shaded (non-zero blending weight), and the largest rasterized count.
   double rasterizedPerPixel = 0, shadedPerPixel = 0;
   unsigned maxRasterized = 0;
+  // Shaded / rasterized: the share of the light pass's fragment work that adds light (0 if none ran).
+  double efficiency() const { return rasterizedPerPixel > 0 ? shadedPerPixel / rasterizedPerPixel : 0.0; }
 };
 
 struct FrameStats {

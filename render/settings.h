@@ -47,6 +47,7 @@ struct LightPassSettings {
   int interleave = 1;       // n x n interleaved sampling
   bool overdraw = false;    // count fragments per pixel (AOV "overdraw")
   bool bruteForce = false;  // every S0 light at every pixel, weight 1 (exact unshadowed)
+  bool volumeCulling = true;  // sphere-bounding rectangles depth-tested against the surfaces; false: the paper's cubes
 };
 
 // Indirect shadows: the light pass's selection of k lights per pixel and the shadow rays to them.
@@ -107,6 +108,7 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(pass.startLevel, SettingInfo{"start-level", "finest level the light pass blends: 1 (S1) or 0 (the input lights)", 0, 1});
   visit(pass.interleave, SettingInfo{"interleave", "n x n interleaved sampling of the light pass (1, 2, 4)", 1, gpu::kMaxInterleave});
   visit(pass.overdraw, SettingInfo{"overdraw", "count fragments per pixel in the light pass (AOV overdraw, summary)"});
+  visit(pass.volumeCulling, SettingInfo{"volume-culling", "draw each light volume as its 2R sphere's screen rectangle, depth-tested so that surfaces behind it are not shaded (false: the paper's cubes, every covered pixel shaded)"});
   visit(pass.bruteForce, SettingInfo{"brute-force", "shade every input light at every pixel with weight 1 (exact unshadowed sum; slow)"});
   auto& shadows = s.shadows;
   visit(shadows.samples, SettingInfo{"shadow-samples", "k: shadow rays per pixel for indirect light (0 = unshadowed)", 0, gpu::kMaxShadowSamples});

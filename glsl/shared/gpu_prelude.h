@@ -34,6 +34,8 @@ using glm::exp2;
 using glm::max;
 using glm::min;
 using glm::pow;
+using glm::sqrt;
+using glm::floor;
 using glm::floatBitsToInt;
 using glm::floatBitsToUint;
 using glm::intBitsToFloat;

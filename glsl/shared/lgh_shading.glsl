@@ -4,17 +4,7 @@
 #ifndef LGH_LGH_SHADING_GLSL
 #define LGH_LGH_SHADING_GLSL
 
-const uint kRoleFinest = 0u;
-const uint kRoleMiddle = 1u;
-const uint kRoleTop = 2u;
-const uint kRoleOnly = 3u;
-
-uint levelRole(uint level, uint firstLevel, uint levels) {
-  if (firstLevel == levels) return kRoleOnly;
-  if (level == firstLevel) return kRoleFinest;
-  if (level == levels) return kRoleTop;
-  return kRoleMiddle;
-}
+#include "shared/light_levels.h"  // roles (kRole*, levelRole) and R_l, shared with C++
 
 // Weight of a light of a level with the given role at distance d, R = alpha * h_level.
 float blendWeight(uint role, float d, float R) {

@@ -17,23 +17,49 @@ GPU_CONST uint kSelectUniform = 2u;     // every contributing light equally like
 GPU_CONST uint kSlotS0 = 0x80000000u;
 GPU_CONST uint kNoLight = 0xffffffffu;
 
+// How a light volume is drawn (LightPassUniforms::volumeShape).
+GPU_CONST uint kVolumeFullScreen = 0u;  // a full-screen triangle (top level, brute force)
+GPU_CONST uint kVolumeCube = 1u;        // the paper's cube of half-size 2R, no depth test
+GPU_CONST uint kVolumeCulled = 2u;      // the screen octagon of the 2R sphere, depth- and stencil-tested
+
+// Scalars in groups of four (std140 and C++ agree without padding; see gpu_prelude.h).
 GPU_STRUCT(LightPassUniforms) {
-  // x: alpha, y: H (top cell size), z: clamp distance d_c, w: contribution scale (n^2 with interleaving)
-  vec4 alphaTopCellClampScale;
-  // x: first level drawn (0 = S0), y: L, z: instance offset of this draw, w: 1 = full-screen draw
-  uvec4 levels;
-  // x: n (tiles per axis), y: tile width, z: tile height, w: global index of the bound buffer's first
-  // light (S0 is drawn in chunks of one storage block each; tiles are assigned by global index)
-  uvec4 tiles;
-  // x, y: full-resolution image size; z: 1 = brute force (weight 1 for every light), w: 0
-  uvec4 image;
-  // Shadow-sample selection (DESIGN 5). x: k slots per pixel (0 = off), y: kSelect* flags,
-  // z: frame seed, w: 0
-  uvec4 selection;
-  // levelOffsets[l]: index of level l's first light in the merged grid-light buffer (S0: 0), for
-  // spreading each level's lights evenly over the tiles
+  float alpha;              // R_l = alpha h_l
+  float topCellSize;        // H
+  float clampDistance;      // d_c
+  float contributionScale;  // n^2 with n x n interleaving (each light shades 1/n^2 of the pixels)
+
+  uint firstLevel;      // finest level blended: 0 (S0) or 1 (S1)
+  uint levels;          // L
+  uint instanceOffset;  // index of this draw's first light in the bound buffer
+  uint volumeShape;     // kVolume*
+
+  uint tilesPerAxis;      // n
+  uint tileWidth;
+  uint tileHeight;
+  uint boundLightOffset;  // global index of the bound buffer's first light (S0 is bound in chunks;
+                          // tiles are dealt by global index)
+
+  uint imageWidth;   // full resolution
+  uint imageHeight;
+  uint bruteForce;   // 1: weight 1 for every light
+  float cullingDepthScale;  // cullingDepth()'s scale, as the depth target was written with
+
+  // Shadow-sample selection (DESIGN 5)
+  uint shadowSamples;  // k slots per pixel (0 = off)
+  uint selectFlags;    // kSelect*
+  uint frameSeed;
+  uint pad0;
+
+  // levelOffsets[l / 4][l % 4]: index of level l's first light in the merged grid-light buffer
+  // (S0: 0), for dealing each level's lights evenly to the tiles
   uvec4 levelOffsets[kMaxLightPassLevels / 4u];
 };
+GPU_CHECK_OFFSET(LightPassUniforms, firstLevel, 16);
+GPU_CHECK_OFFSET(LightPassUniforms, tilesPerAxis, 32);
+GPU_CHECK_OFFSET(LightPassUniforms, imageWidth, 48);
+GPU_CHECK_OFFSET(LightPassUniforms, shadowSamples, 64);
+GPU_CHECK_OFFSET(LightPassUniforms, levelOffsets, 80);
 GPU_CHECK_SIZE(LightPassUniforms, 144);
 
 GPU_NAMESPACE_END

@@ -117,8 +117,9 @@ int run(int argc, char** argv) {
                     settings.shadows.uniform ? "uniform" : "by contribution",
                     settings.shadows.skipFinest ? "finest level skipped" : "all levels", settings.filter.passes);
       if (settings.lightPass.overdraw)
-        std::printf("overdraw   %.1f fragments rasterized per pixel (max %u), %.1f shaded\n", ls.rasterizedPerPixel,
-                    ls.maxRasterized, ls.shadedPerPixel);
+        std::printf("overdraw   %.1f fragments rasterized per pixel (max %u), %.1f shaded, efficiency %.2f (%s volumes)\n",
+                    ls.rasterizedPerPixel, ls.maxRasterized, ls.shadedPerPixel, ls.efficiency(),
+                    settings.lightPass.volumeCulling ? "culled" : "cube");
     }
     std::printf("load       %.1f ms, GPU setup %.1f ms\n", loadMs, setupMs);
     std::printf("passes     (wall ms, glFinish-bracketed)\n");

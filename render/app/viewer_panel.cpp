@@ -194,8 +194,8 @@ void drawStatus(const ViewerState& state, const PanelInfo& info) {
       else
         ImGui::TextWrapped("L = %d, drawn%s", l.levels, levels.c_str());
       if (state.settings.lightPass.overdraw)
-        ImGui::Text("overdraw %.1f fragments/pixel (max %u), %.1f shaded", l.rasterizedPerPixel, l.maxRasterized,
-                    l.shadedPerPixel);
+        ImGui::Text("overdraw %.1f fragments/pixel (max %u), %.1f shaded, efficiency %.2f", l.rasterizedPerPixel,
+                    l.maxRasterized, l.shadedPerPixel, l.efficiency());
     }
     if (f->nonFinitePixels > 0) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%u NaN/Inf pixels", f->nonFinitePixels);
   }

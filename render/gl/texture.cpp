@@ -67,7 +67,8 @@ Framebuffer::Framebuffer(std::initializer_list<const Texture2D*> colors, const T
     height_ = color->height();
   }
   if (depth) {
-    glNamedFramebufferTexture(name, GL_DEPTH_ATTACHMENT, depth->id(), 0);
+    const bool stencil = depth->format() == GL_DEPTH32F_STENCIL8 || depth->format() == GL_DEPTH24_STENCIL8;
+    glNamedFramebufferTexture(name, stencil ? GL_DEPTH_STENCIL_ATTACHMENT : GL_DEPTH_ATTACHMENT, depth->id(), 0);
     width_ = depth->width();
     height_ = depth->height();
   }

@@ -42,7 +42,8 @@ class Texture2D {
 class Framebuffer {
  public:
   Framebuffer() = default;
-  // Attaches colour textures in order (location i = GL_COLOR_ATTACHMENT0 + i) and an optional depth texture.
+  // Attaches colour textures in order (location i = GL_COLOR_ATTACHMENT0 + i) and an optional depth texture
+  // (as depth and stencil when its format has stencil).
   Framebuffer(std::initializer_list<const Texture2D*> colors, const Texture2D* depth);
 
   GLuint id() const { return handle_.id(); }

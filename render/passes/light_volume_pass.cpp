@@ -1,6 +1,7 @@
 #include "render/passes/light_volume_pass.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <numeric>
 #include <stdexcept>
@@ -15,11 +16,22 @@ namespace lgh {
 // One instanced draw: `count` lights from index `first` of the buffer bound at LGH_BINDING_PASS0.
 struct LightVolumePass::Draw {
   const gl::Buffer* buffer = nullptr;
-  bool s0Input = false;     // GpuLight (S0) rather than GpuGridLight
-  bool fullScreen = false;  // a full-screen triangle per light rather than a cube
+  bool s0Input = false;                  // GpuLight (S0) rather than GpuGridLight
+  unsigned shape = gpu::kVolumeCube;     // gpu::kVolume*
+  bool sortedBySlice = false;            // culled grid lights: drawn slice by slice (VolumeCulling)
   size_t first = 0, count = 0;
   size_t boundOffset = 0, boundLights = 0;  // S0: the chunk bound (in lights); grid lights: whole buffer
 };
+
+namespace {
+
+// Vertices per instance and primitive of each volume shape (light_volume.vert).
+GLsizei verticesOf(unsigned shape) {
+  return shape == gpu::kVolumeFullScreen ? 3 : shape == gpu::kVolumeCube ? 36 : 8;
+}
+GLenum primitiveOf(unsigned shape) { return shape == gpu::kVolumeCulled ? GL_TRIANGLE_STRIP : GL_TRIANGLES; }
+
+}  // namespace
 
 size_t LightPassDraws::lightsDrawn() const {
   return std::accumulate(lightsPerLevel.begin(), lightsPerLevel.end(), size_t(0));
@@ -55,9 +67,11 @@ LightVolumePass::LightVolumePass(bool floatAtomics) : floatAtomics_(floatAtomics
   gl::checkErrors("light pass setup");
 }
 
-const gl::Program& LightVolumePass::program(bool s0Input, const LightPassOptions& options) {
+const gl::Program& LightVolumePass::program(const Draw& draw, const LightPassOptions& options) {
   gl::Defines defines;
-  if (s0Input) defines.emplace_back("LGH_S0_INPUT", "1");
+  if (draw.s0Input) defines.emplace_back("LGH_S0_INPUT", "1");
+  if (draw.shape == gpu::kVolumeCulled) defines.emplace_back("LGH_DEPTH_CULLED", "1");
+  if (draw.sortedBySlice) defines.emplace_back("LGH_SORTED_LIGHTS", "1");
   if (options.pass.overdraw) defines.emplace_back("LGH_COUNT_OVERDRAW", "1");
   if (options.shadows.samples > 0) {
     defines.emplace_back("LGH_SELECT_SHADOWS", "1");
@@ -70,8 +84,7 @@ const gl::Program& LightVolumePass::program(bool s0Input, const LightPassOptions
   return p;
 }
 
-LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
-                                        const LightPassOptions& options, LightPassTarget& target) {
+void LightVolumePass::checkTarget(const LightPassOptions& options, const LightPassTarget& target, int levels) {
   if (options.pass.overdraw && !target.fragmentCounts)
     throw std::invalid_argument("light pass: counting fragments needs a fragment-count target");
   if (options.shadows.samples > 0 &&
@@ -81,112 +94,173 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
   if (options.pass.startLevel != 0 && options.pass.startLevel != 1)
     throw std::invalid_argument("light pass: the first level is 0 (S0) or 1 (S1), not " +
                                 std::to_string(options.pass.startLevel));
+  if (levels > int(gpu::kMaxLightPassLevels) - 1)
+    throw std::invalid_argument("light pass: " + std::to_string(levels) + " levels, at most " +
+                                std::to_string(gpu::kMaxLightPassLevels - 1) + " supported");
+}
+
+LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
+                                        const LightPassOptions& options, LightPassTarget& target) {
   // Brute force draws no grid level; an unbuilt hierarchy has none either.
   const int L = options.pass.bruteForce || hierarchy.levels.empty() ? 0 : hierarchy.grid.levels;
-  if (L > int(gpu::kMaxLightPassLevels) - 1)
-    throw std::invalid_argument("light pass: " + std::to_string(L) + " levels, at most " +
-                                std::to_string(gpu::kMaxLightPassLevels - 1) + " supported");
-
-  // The draws of this frame, finest level first.
-  std::vector<Draw> draws;
+  checkTarget(options, target, L);
   LightPassDraws counts;
+  const std::vector<Draw> draws = drawList(lights, lightCount, hierarchy, options, L, counts);
+  uploadUniforms(draws, hierarchy, options, target.layout, L);
+  bindTargets(options, target);
+  if (options.pass.volumeCulling) prepareCulling(draws, hierarchy, options, target, L);
+  bindInputs(options, target);
+  issueDraws(draws, options);
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  gl::checkErrors("light pass");
+  return counts;
+}
+
+// The draws of this frame, finest level first: S0 in chunks of one storage block (brute force, or
+// the first level 0), levels 1..L-1 as one instanced draw of volumes, the top level full-screen.
+std::vector<LightVolumePass::Draw> LightVolumePass::drawList(const gl::Buffer& lights, size_t lightCount,
+                                                             const GpuHierarchy& hierarchy,
+                                                             const LightPassOptions& options, int L,
+                                                             LightPassDraws& counts) const {
+  std::vector<Draw> draws;
   counts.lightsPerLevel.assign(size_t(std::max(L, 0)) + 1, 0);
+  const unsigned volume = options.pass.volumeCulling ? gpu::kVolumeCulled : gpu::kVolumeCube;
   const bool drawS0 = options.pass.bruteForce || (options.pass.startLevel == 0 && L >= 1);
   if (L >= 1 && hierarchy.levels.size() < size_t(L) + 1) throw std::logic_error("light pass: the hierarchy's level table is incomplete");
   if (drawS0) {
+    const unsigned shape = options.pass.bruteForce ? gpu::kVolumeFullScreen : volume;
     for (size_t first = 0; first < lightCount; first += maxBlockLights_) {
       const size_t n = std::min(maxBlockLights_, lightCount - first);
-      draws.push_back({&lights, true, options.pass.bruteForce, 0, n, first, n});
+      draws.push_back({&lights, true, shape, false, 0, n, first, n});
     }
     counts.lightsPerLevel[0] = lightCount;
   }
   if (!options.pass.bruteForce && L >= 1) {
-    // Levels 1..L-1 are contiguous in the merged buffer: one instanced draw of cubes.
+    // Levels 1..L-1 are contiguous in the merged buffer: one instanced draw of volumes.
     const size_t gridLights = hierarchy.gridLightCount;
-    const size_t cubesEnd = hierarchy.levels[size_t(L)].offset;
-    if (L > 1 && cubesEnd > hierarchy.levels[1].offset)
-      draws.push_back({&hierarchy.gridLights, false, false, hierarchy.levels[1].offset, cubesEnd - hierarchy.levels[1].offset, 0, gridLights});
+    const size_t volumesEnd = hierarchy.levels[size_t(L)].offset;
+    if (L > 1 && volumesEnd > hierarchy.levels[1].offset)
+      draws.push_back({&hierarchy.gridLights, false, volume, volume == gpu::kVolumeCulled, hierarchy.levels[1].offset,
+                       volumesEnd - hierarchy.levels[1].offset, 0, gridLights});
     if (hierarchy.levels[size_t(L)].count > 0)
-      draws.push_back({&hierarchy.gridLights, false, true, cubesEnd, hierarchy.levels[size_t(L)].count, 0, gridLights});
+      draws.push_back({&hierarchy.gridLights, false, gpu::kVolumeFullScreen, false, volumesEnd,
+                       hierarchy.levels[size_t(L)].count, 0, gridLights});
     for (int l = 1; l <= L; ++l) counts.lightsPerLevel[size_t(l)] = hierarchy.levels[size_t(l)].count;
   }
+  return draws;
+}
 
-  // Per-draw uniforms, all uploaded before the first draw.
+// Per-draw uniforms, all uploaded before the first draw.
+void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy,
+                                     const LightPassOptions& options, const TileLayout& layout, int L) {
   gl::ensureSize(uniforms_, std::max<size_t>(draws.size(), 1) * uniformStride_);
   std::vector<unsigned char> staging(std::max<size_t>(draws.size(), 1) * uniformStride_, 0);
-  const int n = target.layout.tilesPerAxis;
+  const int n = layout.tilesPerAxis;
   for (size_t i = 0; i < draws.size(); ++i) {
     const Draw& d = draws[i];
     gpu::LightPassUniforms u{};
-    u.alphaTopCellClampScale = glm::vec4(options.pass.alpha, float(hierarchy.grid.topCellSize), options.clampDistance,
-                                         float(n * n));
-    u.levels = glm::uvec4(unsigned(options.pass.startLevel), unsigned(std::max(L, 0)), unsigned(d.first),
-                          unsigned(d.fullScreen));
-    u.tiles = glm::uvec4(unsigned(n), unsigned(target.layout.tileSize.x), unsigned(target.layout.tileSize.y),
-                         unsigned(d.boundOffset));
-    u.image = glm::uvec4(unsigned(target.layout.imageSize.x), unsigned(target.layout.imageSize.y),
-                         unsigned(options.pass.bruteForce), 0u);
+    u.alpha = options.pass.alpha;
+    u.topCellSize = float(hierarchy.grid.topCellSize);
+    u.clampDistance = options.clampDistance;
+    u.contributionScale = float(n * n);
+    u.firstLevel = unsigned(options.pass.startLevel);
+    u.levels = unsigned(std::max(L, 0));
+    u.instanceOffset = unsigned(d.first);
+    u.volumeShape = d.shape;
+    u.tilesPerAxis = unsigned(n);
+    u.tileWidth = unsigned(layout.tileSize.x);
+    u.tileHeight = unsigned(layout.tileSize.y);
+    u.boundLightOffset = unsigned(d.boundOffset);
+    u.imageWidth = unsigned(layout.imageSize.x);
+    u.imageHeight = unsigned(layout.imageSize.y);
+    u.bruteForce = options.pass.bruteForce ? 1u : 0u;
+    u.cullingDepthScale = options.sceneSize;
+    u.shadowSamples = unsigned(options.shadows.samples);
+    u.selectFlags = (options.shadows.skipFinest ? gpu::kSelectSkipFinest : 0u) |
+                    (options.shadows.uniform ? gpu::kSelectUniform : 0u);
+    u.frameSeed = options.frameSeed;
     for (int l = 1; l <= L; ++l) u.levelOffsets[l / 4][l % 4] = unsigned(hierarchy.levels[size_t(l)].offset);
-    u.selection = glm::uvec4(unsigned(options.shadows.samples),
-                             (options.shadows.skipFinest ? gpu::kSelectSkipFinest : 0u) |
-                                 (options.shadows.uniform ? gpu::kSelectUniform : 0u),
-                             options.frameSeed, 0u);
     std::memcpy(staging.data() + i * uniformStride_, &u, sizeof(u));
   }
   uniforms_.update(staging.data(), staging.size());
+}
 
-  // Fixed state: additive blending, no depth, one back face per covered pixel, clipped to the tile.
-  gl::Framebuffer framebuffer({&target.irradiance}, nullptr);
-  framebuffer.bind();
+// Clears and binds what the fragments write (irradiance, fragment counts, shadow slots) and read (the
+// surfaces); with volume culling the framebuffer also holds the culling depth and slices.
+void LightVolumePass::bindTargets(const LightPassOptions& options, LightPassTarget& target) {
   const glm::ivec2 size = target.layout.targetSize();
+  // Made per frame (the targets may change) and kept until the next: deleting a bound framebuffer unbinds it.
+  framebuffer_ = gl::Framebuffer({&target.irradiance}, options.pass.volumeCulling ? &culling_.depthStencil(size) : nullptr);
+  framebuffer_.bind();
   glViewport(0, 0, size.x, size.y);
   const float zero[4] = {0, 0, 0, 0};
-  glClearNamedFramebufferfv(framebuffer.id(), GL_COLOR, 0, zero);
-  if (options.pass.overdraw) {
-    target.fragmentCounts->clearUint(0);
-    target.fragmentCounts->bindImage(0, GL_READ_WRITE);
-  }
+  glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 0, zero);
+  if (options.pass.overdraw) target.fragmentCounts->clearUint(0);
   if (options.shadows.samples > 0) {
     target.shadowSlots->totals.clear();
     target.shadowSlots->slots.clearUint(gpu::kNoLight);
+  }
+}
+
+// The culling depth, slices and pyramid from the surfaces, and the culled grid lights sorted by slice.
+void LightVolumePass::prepareCulling(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy,
+                                     const LightPassOptions& options, const LightPassTarget& target, int L) {
+  culling_.prepare(target.position, options.sceneSize);
+  for (const Draw& d : draws)
+    if (d.sortedBySlice)
+      culling_.sortBySlice({d.buffer, d.first, d.count, options.pass.alpha, float(hierarchy.grid.topCellSize),
+                            options.sceneSize, L});
+}
+
+// What the light volumes read and write besides the framebuffer; after the culling preparation, which
+// uses image units, textures and storage bindings of its own.
+void LightVolumePass::bindInputs(const LightPassOptions& options, LightPassTarget& target) {
+  if (options.pass.overdraw) target.fragmentCounts->bindImage(0, GL_READ_WRITE);
+  if (options.shadows.samples > 0) {
     target.shadowSlots->totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
     target.shadowSlots->slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   }
   target.position.bindTexture(0);
   target.normal.bindTexture(1);
-  glDisable(GL_DEPTH_TEST);
+  if (options.pass.volumeCulling) culling_.bindPyramid();
+}
+
+// Additive blending, one fragment per covered pixel (cubes cull their front faces; rectangles and the
+// full-screen triangle face the camera), clipped to the light's tile. Culled volumes pass the depth
+// test only where the surface is not behind the sphere (GEQUAL against its far side) and, sorted by
+// slice, the stencil test only where it is not in front of the sphere's slice.
+void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options) {
   glDepthMask(GL_FALSE);
+  glDepthFunc(GL_GEQUAL);
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
   for (int c = 0; c < 4; ++c) glEnable(GL_CLIP_DISTANCE0 + c);
   glFrontFace(GL_CCW);
   glCullFace(GL_FRONT);
-  glBindVertexArray(emptyVertexArray_.id());
-
   for (size_t i = 0; i < draws.size(); ++i) {
     const Draw& d = draws[i];
     const size_t stride = d.s0Input ? sizeof(gpu::GpuLight) : sizeof(gpu::GpuGridLight);
     d.buffer->bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, d.boundOffset * stride, d.boundLights * stride);
     uniforms_.bindRange(GL_UNIFORM_BUFFER, LGH_UBO_PASS, i * uniformStride_, sizeof(gpu::LightPassUniforms));
-    program(d.s0Input, options).use();
-    // Cubes cull their front faces; the full-screen triangle faces the camera and must not be culled.
-    if (d.fullScreen)
-      glDisable(GL_CULL_FACE);
-    else
-      glEnable(GL_CULL_FACE);
-    glDrawArraysInstanced(GL_TRIANGLES, 0, d.fullScreen ? 3 : 36, GLsizei(d.count));
+    program(d, options).use();
+    if (d.shape == gpu::kVolumeCube) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
+    if (d.shape == gpu::kVolumeCulled) glEnable(GL_DEPTH_TEST); else glDisable(GL_DEPTH_TEST);
+    if (d.sortedBySlice) {
+      culling_.drawSorted();
+    } else {
+      glBindVertexArray(emptyVertexArray_.id());
+      glDrawArraysInstanced(primitiveOf(d.shape), 0, verticesOf(d.shape), GLsizei(d.count));
+    }
   }
-
   glBindVertexArray(0);
   for (int c = 0; c < 4; ++c) glDisable(GL_CLIP_DISTANCE0 + c);
   glDisable(GL_CULL_FACE);
+  glDisable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  gl::checkErrors("light pass");
-  return counts;
 }
 
 }  // namespace lgh

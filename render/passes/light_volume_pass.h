@@ -1,8 +1,13 @@
 #pragma once
 // The LGH light pass (Lin & Yuksel 2019, Sec. 3.2; DESIGN 4): every grid light of every level drawn
-// as a light volume, a cube of half-size 2R_l around it (the support of its blending function), the
-// top level as a full-screen triangle; each fragment adds B_l(d) x the light's irradiance at the
-// pixel's surface into an RGBA32F target with additive blending.
+// as a light volume around the support of its blending function (d < 2R_l), the top level as a
+// full-screen triangle; each fragment adds B_l(d) x the light's irradiance at the pixel's surface into
+// an RGBA32F target with additive blending. Volumes are either the paper's cubes of half-size 2R_l
+// (no depth test: every pixel under the cube is shaded) or, with volume culling, the screen rectangle
+// of the 2R_l sphere depth-tested against the surfaces, so that a pixel whose surface lies behind the
+// sphere is rejected before shading, and skipped whole when every surface under it lies in front of
+// the sphere (a max-depth pyramid). Only zero-weight fragments go: the image and the shadow selection
+// are the same, only cheaper.
 //   in:  surfaces (G-buffer position and normal, or their interleaved tiles), the input lights S0
 //        and the hierarchy built over them, frame uniforms (LGH_UBO_FRAME)
 //   out: irradiance (rgb: W/m^2, albedo / pi gives radiance; a: fragments that shaded the pixel),
@@ -17,6 +22,7 @@
 #include "render/gl/texture.h"
 #include "render/passes/interleave_pass.h"
 #include "render/passes/lgh_build_pass.h"
+#include "render/passes/volume_culling.h"
 #include "render/settings.h"
 
 namespace lgh {
@@ -29,6 +35,7 @@ struct LightPassOptions {
   // contribution (or uniformly, for comparison); samples = 0: no selection.
   ShadowSettings shadows{0};
   float clampDistance = 0.0f;  // d_c, resolved
+  float sceneSize = 1.0f;      // spreads the culling depth over [0, 1) (shared/light_levels.h)
   unsigned frameSeed = 0;
 };
 
@@ -66,7 +73,17 @@ class LightVolumePass {
 
  private:
   struct Draw;
-  const gl::Program& program(bool s0Input, const LightPassOptions& options);
+  static void checkTarget(const LightPassOptions& options, const LightPassTarget& target, int levels);
+  std::vector<Draw> drawList(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
+                             const LightPassOptions& options, int levels, LightPassDraws& counts) const;
+  void uploadUniforms(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy, const LightPassOptions& options,
+                      const TileLayout& layout, int levels);
+  void bindTargets(const LightPassOptions& options, LightPassTarget& target);
+  void prepareCulling(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy, const LightPassOptions& options,
+                      const LightPassTarget& target, int levels);
+  void bindInputs(const LightPassOptions& options, LightPassTarget& target);
+  void issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options);
+  const gl::Program& program(const Draw& draw, const LightPassOptions& options);
 
   bool floatAtomics_;
   std::map<std::string, gl::Program> programs_;  // by their defines, compiled on first use
@@ -74,6 +91,8 @@ class LightVolumePass {
   size_t uniformStride_ = 0;
   size_t maxBlockLights_ = 0;            // S0 lights per storage block binding
   gl::VertexArrayHandle emptyVertexArray_;  // draws take their vertices from gl_VertexID
+  VolumeCulling culling_;                   // depth, slices, pyramid and sorting for culled volumes
+  gl::Framebuffer framebuffer_;             // irradiance (+ culling depth-stencil), made by each execute
 };
 
 }  // namespace lgh

@@ -239,5 +239,117 @@ TEST_F(LightPassTest, InterleavedBruteForceDrawsEachLightIntoOneTile) {
   EXPECT_LE(frame.stats.lights.maxRasterized, unsigned((count + 15) / 16));
 }
 
+// Volume culling (screen rectangles of the 2R spheres, depth-tested against the surfaces) skips only
+// fragments whose blending weight is zero: the image equals the cube path's to 1e-4 per pixel, the
+// fragments that shade are the same ones (same count), and fewer are rasterized. Checked at 1x1 and
+// 4x4 (the tiles need their own depth), from S1 and from S0, and with the camera inside volumes.
+struct CullingCase {
+  const char* name;
+  int interleave, startLevel;
+  float alpha;
+  bool cameraInside;
+};
+
+double maxRelativeDifference(const ImageRGBA& a, const ImageRGBA& b) {
+  // Relative to the pixel, with a floor of 1e-6 of the image mean so that black pixels compare absolutely.
+  const double floor = 1e-6 * meanLuminance(b);
+  double worst = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      worst = std::max(worst, std::abs(double(a.pixels[i][k]) - b.pixels[i][k]) / std::max(std::abs(double(b.pixels[i][k])), floor));
+  return worst;
+}
+
+void expectCullingKeepsTheImage(const SceneOnGpu& s, const CullingCase& c, int vpls) {
+  SCOPED_TRACE(c.name);
+  RenderSettings settings = smallSettings(vpls);
+  settings.lightPass.interleave = c.interleave;
+  settings.lightPass.startLevel = c.startLevel;
+  settings.lightPass.alpha = c.alpha;
+  settings.lightPass.overdraw = true;
+  Camera camera = resolveCamera(s.scene, settings);
+  if (c.cameraInside) {
+    // Next to the back wall's centre (+z; the box opens towards -z), looking out through the box:
+    // inside the volumes of the lights on that wall.
+    const glm::vec3 centre = s.scene.bounds.center();
+    camera.position = glm::vec3(centre.x, centre.y, s.scene.bounds.max.z - 0.02f * s.scene.bounds.diagonal());
+    camera.orientation = glm::mat3(glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1));
+    camera.znear = 1e-3f;
+  }
+  const CameraView view = makeCameraView(camera, settings.image.width, settings.image.height);
+  settings.lightPass.volumeCulling = false;
+  Renderer renderer(s.gpu, settings);
+  const FrameStats cubes = renderer.render(view);
+  const ImageRGBA cubeImage = renderer.readImage(Aov::Irradiance);
+  settings.lightPass.volumeCulling = true;
+  renderer.setSettings(settings);
+  const FrameStats culled = renderer.render(view);
+  const ImageRGBA culledImage = renderer.readImage(Aov::Irradiance);
+  ASSERT_GT(meanLuminance(cubeImage), 0.0);
+  const double difference = maxRelativeDifference(culledImage, cubeImage);
+  std::printf("  %s: fragments/px %.1f (cubes) -> %.1f (culled), shaded %.2f -> %.2f, efficiency %.2f -> %.2f, "
+              "max relative difference %.2g\n",
+              c.name, cubes.lights.rasterizedPerPixel, culled.lights.rasterizedPerPixel, cubes.lights.shadedPerPixel,
+              culled.lights.shadedPerPixel, cubes.lights.efficiency(), culled.lights.efficiency(), difference);
+  EXPECT_LE(difference, 1e-4);
+  EXPECT_NEAR(culled.lights.shadedPerPixel, cubes.lights.shadedPerPixel, 1e-6 * cubes.lights.shadedPerPixel);
+  EXPECT_LT(culled.lights.rasterizedPerPixel, cubes.lights.rasterizedPerPixel);
+  EXPECT_LE(culled.lights.shadedPerPixel, culled.lights.rasterizedPerPixel);
+}
+
+TEST_F(LightPassTest, CulledVolumesShadeWhatCubesShade) {
+  SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
+  for (const CullingCase& c : {CullingCase{"1x1 from S1", 1, 1, 1.0f, false}, CullingCase{"4x4 from S1", 4, 1, 1.0f, false},
+                               CullingCase{"2x2 from S0", 2, 0, 1.0f, false},
+                               CullingCase{"camera inside, alpha 4", 1, 1, 4.0f, true},
+                               CullingCase{"camera inside, 4x4 from S0", 4, 0, 2.0f, true}})
+    expectCullingKeepsTheImage(s, c, 20000);
+}
+
+TEST_F(LightPassTest, CulledVolumesShadeWhatCubesShadeOnSponza) {
+  LGH_REQUIRE_SHARED_SCENE(path, "sponza_sun/sponza_sun.gltf");
+  SceneOnGpu s(path);
+  for (const CullingCase& c : {CullingCase{"Sponza 1x1", 1, 1, 1.0f, false}, CullingCase{"Sponza 4x4", 4, 1, 1.0f, false}})
+    expectCullingKeepsTheImage(s, c, 20000);
+}
+
+// A culled fragment has weight zero, so it cannot take part in shadow-sample selection: every pixel's
+// importance total (the sum of the f of every fragment that offered itself) is the cube path's, with
+// interleaving too. (The slots themselves differ: culled volumes are drawn sorted by depth slice, so
+// the fragments of a pixel arrive in another order; the frequencies are checked by ShadowTest.)
+TEST_F(LightPassTest, CullingLeavesShadowSelectionUnchanged) {
+  SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
+  for (int n : {1, 2}) {
+    SCOPED_TRACE("interleave " + std::to_string(n));
+    RenderSettings settings = smallSettings(20000);
+    settings.shadows.samples = 4;
+    settings.shadows.skipFinest = false;  // S1 lights are the ones culling touches most
+    settings.lightPass.interleave = n;
+    const CameraView view = makeCameraView(resolveCamera(s.scene, settings), settings.image.width, settings.image.height);
+    std::vector<float> totals[2];
+    std::vector<GLuint> slots[2];
+    for (int culling : {0, 1}) {
+      settings.lightPass.volumeCulling = culling == 1;
+      Renderer renderer(s.gpu, settings);  // a fresh renderer: frame 0, the same seed
+      renderer.render(view);
+      const glm::ivec2 size = renderer.shadowSlots().size;
+      const size_t pixels = size_t(size.x) * size_t(size.y);
+      totals[culling] = renderer.shadowSlots().totals.download<float>(pixels);
+      slots[culling] = renderer.shadowSlots().slots.download<GLuint>(pixels * 4);
+    }
+    size_t selected[2] = {0, 0};
+    for (size_t i = 0; i < totals[0].size(); ++i)
+      ASSERT_NEAR(totals[1][i], totals[0][i], 1e-5f * totals[0][i]) << "pixel " << i;
+    for (int path : {0, 1})
+      for (size_t i = 0; i < slots[path].size(); ++i) {
+        selected[path] += slots[path][i] != gpu::kNoLight;
+        // A slot is filled exactly where the pixel had some importance.
+        ASSERT_EQ(slots[path][i] != gpu::kNoLight, totals[path][i / 4] > 0.0f) << "slot " << i;
+      }
+    EXPECT_GT(selected[0], slots[0].size() / 4);
+    EXPECT_EQ(selected[1], selected[0]);
+  }
+}
+
 }  // namespace
 }  // namespace lgh::test

@@ -90,6 +90,14 @@ class PinnedFramesTest : public GLTest {
 // (the second draws new shadow samples).
 TEST_F(PinnedFramesTest, DefaultSettings) { checkFrames("default", 2); }
 
+// The same frames with the paper's cube volumes, pinned before volume culling: the cube path still
+// draws in light order. (Culled volumes are drawn sorted by depth slice, which changes the order of
+// the blending sums and so which lights the selection picks: the frames above, pinned after it.)
+TEST_F(PinnedFramesTest, DefaultSettingsWithCubeVolumes) {
+  settings.lightPass.volumeCulling = false;
+  checkFrames("cubes_default", 2);
+}
+
 // Interleaved 2 x 2 with alpha 2 and fixed levels, one uniformly picked shadow sample with S1
 // selectable, shadow rays to cluster centres (no jitter), no filter.
 TEST_F(PinnedFramesTest, InterleavedUniformSelection) {
@@ -102,6 +110,8 @@ TEST_F(PinnedFramesTest, InterleavedUniformSelection) {
   settings.shadows.spread = 0.0f;
   settings.filter.passes = 0;
   checkFrames("interleaved_uniform", 1);
+  settings.lightPass.volumeCulling = false;
+  checkFrames("cubes_interleaved_uniform", 1);
 }
 
 // Interleaved 2 x 2 from S0 itself (start level 0): draws S0 in its buffer order, so it also pins

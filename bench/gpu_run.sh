@@ -1,0 +1,150 @@
+#!/usr/bin/env bash
+# The prepared GPU run: one call on a machine with an NVIDIA GPU (EGL device platform, no display)
+# builds the project, checks that EGL picked the device platform and a hardware renderer, runs the GL
+# tests that exercise the device path, then measures the paper's Tables 1-3 at 1280x720 with 100K and
+# 1M VPLs, and writes CSV/JSON plus summary.md into the output folder. Planned to finish in under 8
+# minutes on a GPU machine with 8+ cores (the build is most of it; --no-build reuses one).
+#
+# Without a hardware GPU (llvmpipe, or no EGL device at all) it says so loudly and runs a reduced
+# version (160x90, 1K/10K VPLs on data/cornell_box, one frame per point, three tests) that checks the
+# script end to end:
+# ctest runs it that way (test GpuRunReduced, under a minute).
+#
+#   bench/gpu_run.sh [--out DIR] [--build-dir DIR] [--no-build] [--reduced] [--require-gpu] [--jobs N]
+#
+#   --reduced      the reduced version even on a GPU
+#   --require-gpu  exit 2 when no hardware GPU is found, instead of running the reduced version
+#   --no-build     use the binaries already in --build-dir
+# Exit status: 0 when every step passed, 1 when a test or a benchmark check failed, 2 no GPU with
+# --require-gpu, 3 bad arguments or a failed build.
+set -uo pipefail
+
+source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+out=gpu_run_out
+build_dir="$source_dir/build-gpu"
+build=1
+mode=auto
+require_gpu=0
+jobs=$(nproc 2>/dev/null || echo 4)
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --out) out=$2; shift 2 ;;
+    --build-dir) build_dir=$2; shift 2 ;;
+    --no-build) build=0; shift ;;
+    --reduced) mode=reduced; shift ;;
+    --require-gpu) require_gpu=1; shift ;;
+    --jobs) jobs=$2; shift 2 ;;
+    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    *) echo "gpu_run.sh: unknown argument '$1' (see --help)" >&2; exit 3 ;;
+  esac
+done
+mkdir -p "$out" || exit 3
+out=$(cd "$out" && pwd)
+started=$(date +%s)
+status=0
+: > "$out/log.txt"
+log() { echo "[gpu_run $(( $(date +%s) - started ))s] $*" | tee -a "$out/log.txt"; }
+# Runs a step with its output in $out/NAME.txt; a failure is recorded, later steps still run.
+step() {
+  local name=$1; shift
+  log "$name: $*"
+  if "$@" > "$out/$name.txt" 2>&1; then
+    log "$name: ok"
+  else
+    log "$name: FAILED (exit $?, see $name.txt)"
+    tail -n 20 "$out/$name.txt" | sed 's/^/    /' | tee -a "$out/log.txt"
+    status=1
+  fi
+}
+
+# --- 1. Build.
+if [[ $build == 1 ]]; then
+  launcher=()
+  command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+  log "build: $build_dir with $jobs jobs"
+  if ! { cmake -S "$source_dir" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" &&
+         cmake --build "$build_dir" -j "$jobs" --target lgh-render lgh-bench render_tests; } > "$out/build.txt" 2>&1; then
+    log "build: FAILED (see build.txt)"; tail -n 30 "$out/build.txt"; exit 3
+  fi
+  log "build: ok"
+fi
+render="$build_dir/lgh-render"
+bench="$build_dir/lgh-bench"
+tests="$build_dir/tests/render_tests"
+for exe in "$render" "$bench" "$tests"; do
+  [[ -x $exe ]] || { log "missing $exe (build first, or drop --no-build)"; exit 3; }
+done
+
+# --- 2. Which device EGL gives us: the device platform and a hardware renderer, or not.
+cornell="$source_dir/data/cornell_box.gltf"
+device_line=$("$render" "$cornell" --backend egl-device --width 64 --height 36 --vpls 1000 -o "$out/device_check.png" 2> "$out/device_check.txt" | grep '^context' | sed 's/^context *//')
+[[ -z $device_line ]] && device_line="(no EGL device context: $(tail -n 1 "$out/device_check.txt"))"
+gpu=0
+if [[ $device_line == "EGL device:"* ]] && ! grep -qiE 'llvmpipe|softpipe|swrast|software|lavapipe' <<< "$device_line"; then gpu=1; fi
+if [[ $gpu == 1 ]]; then
+  log "device: hardware GPU through the EGL device platform: $device_line"
+  backend=egl-device
+  [[ $mode == auto ]] && mode=full
+else
+  log "device: NO GPU PRESENT - EGL gives $device_line"
+  if [[ $require_gpu == 1 ]]; then log "--require-gpu: stopping"; exit 2; fi
+  log "running the REDUCED version (small sizes); its times say nothing about a GPU"
+  backend=auto
+  mode=reduced
+fi
+
+# --- 3. The GL tests that exercise the device path (context, build, light pass, shadows, pinned frames).
+if [[ $mode == full ]]; then
+  filter='ContextTest.*:Headless/BackendTest.*:LghBuild*:LightPassTest.*:ShadowTest.*:PinnedFramesTest.*'
+else
+  filter='ContextTest.IsCore45WithComputeShaders:LightPassTest.CulledVolumesShadeWhatCubesShade:LightPassTest.CullingLeavesShadowSelectionUnchanged'
+fi
+export LGH_TEST_BACKEND=$backend
+step tests "$tests" --gtest_filter="$filter" --gtest_output="json:$out/tests.json"
+
+# --- 4. The paper's tables.
+sponza="$source_dir/../shared/scenes/sponza_sun/sponza_sun.gltf"
+[[ -f $sponza && $mode == full ]] || sponza="$cornell"  # reduced: the project's own small scene
+camera=()
+[[ $sponza == *sponza_sun* ]] && camera=(--camera atrium)
+if [[ $mode == full ]]; then
+  width=1280 height=720 vpls=100K,1M frame_vpls=(100000 1000000) repeats=5 build_lights=100K,1M table1=100K
+else
+  width=160 height=90 vpls=1K,10K frame_vpls=(10000) repeats=1 build_lights=1K,10K table1=10K
+fi
+# Tables 1 and 2 (construction): per-step times at one count, totals vs light count.
+step table1_2_build "$bench" build --backend "$backend" --lights "$build_lights" --table1-lights "$table1" \
+  --repeats "$repeats" --budget 20 --cpu-limit 5 --csv "$out/build.csv" --json "$out/build.json"
+# Table 2 (render time vs VPLs) and the light pass's efficiency, cube and culled volumes, 1x1 and 4x4.
+step table2_light "$bench" light --backend "$backend" --scene "$sponza" "${camera[@]}" --width "$width" \
+  --height "$height" --vpls "$vpls" --tiles 1,4 --repeats "$repeats" --brute-force-limit 0 --interleave-vpls 0 \
+  --csv "$out/light.csv" --json "$out/light.json"
+# Table 3: the frame pass by pass, interleaving 1/2/4, at each VPL count.
+for v in "${frame_vpls[@]}"; do
+  step "table3_frame_$v" "$bench" frame --backend "$backend" --scene "$sponza" "${camera[@]}" --width "$width" \
+    --height "$height" --vpls "$v" --repeats "$repeats" --csv "$out/frame_$v.csv"
+done
+
+# --- 5. Summary.
+{
+  echo "# GPU run ($mode)"
+  echo
+  echo "* date: $(date -u '+%Y-%m-%d %H:%M UTC'), commit $(git -C "$source_dir" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "* device: $device_line"
+  [[ $gpu == 1 ]] || echo "* **NO GPU PRESENT**: the reduced version ran on the software renderer; times say nothing about a GPU"
+  echo "* scene: $sponza ${camera[*]}"
+  echo "* sizes: ${width}x${height}, VPLs $vpls (light pass), ${frame_vpls[*]} (frame), $repeats timed frames per point"
+  echo "* wall time: $(( $(date +%s) - started )) s; status: $([[ $status == 0 ]] && echo 'all steps passed' || echo 'SOME STEPS FAILED (log.txt)')"
+  echo
+  echo "## Tests"
+  echo
+  grep -E '^\[  (PASSED|FAILED)|tests? ran' "$out/tests.txt" | sed 's/^/    /'
+  for f in table1_2_build table2_light "${frame_vpls[@]/#/table3_frame_}"; do
+    echo
+    echo "## $f"
+    echo
+    sed 's/^/    /' "$out/$f.txt"
+  done
+} > "$out/summary.md"
+log "wrote $out/summary.md (status $status)"
+exit $status
