@@ -8,10 +8,11 @@
 // Background and tile padding get the far end: no light volume is shaded there. With stencil export
 // the surface's depth slice goes to the stencil in the same pass (else VolumeCulling counts it with
 // one draw per slice boundary).
+#include "shared/bindings.h"
 #include "shared/frame.glsl"
 #include "shared/light_levels.h"
 
-layout(binding = 0) uniform sampler2D surfacePosition;
+layout(binding = LGH_TEXTURE_SURFACE_POSITION) uniform sampler2D surfacePosition;
 uniform float depthScale;
 uniform uint slices;
 

@@ -5,12 +5,13 @@
 // counts as nearest (0): no light needs shading there. light_volume.vert skips a light whose whole
 // rectangle only shows surfaces in front of its sphere (it is hidden behind them).
 layout(local_size_x = 8, local_size_y = 8) in;
+#include "shared/bindings.h"
 #include "shared/frame.glsl"
 #include "shared/light_levels.h"
 
-layout(binding = 0) uniform sampler2D surfacePosition;
-layout(r32f, binding = 0) uniform readonly image2D finer;
-layout(r32f, binding = 1) uniform writeonly image2D coarser;
+layout(binding = LGH_TEXTURE_SURFACE_POSITION) uniform sampler2D surfacePosition;
+layout(r32f, binding = LGH_IMAGE_PYRAMID_FINER) uniform readonly image2D finer;
+layout(r32f, binding = LGH_IMAGE_PYRAMID_COARSER) uniform writeonly image2D coarser;
 uniform int level;  // of `coarser`; 0: computed from surfacePosition
 uniform float depthScale;
 

@@ -5,6 +5,8 @@
 // Shades one grid light at the surface under this pixel: irradiance weighted by the light's blending
 // function (DESIGN 4), added into the target. Albedo is applied at compositing, so interleaving and
 // filtering work on smooth irradiance, not on textured radiance.
+#include "shared/color.glsl"
+#include "shared/bindings.h"
 #include "shared/frame.glsl"
 #include "shared/light_pass_types.h"
 #include "shared/lgh_shading.glsl"
@@ -20,10 +22,10 @@ layout(early_fragment_tests) in;
 
 layout(std140, binding = LGH_UBO_PASS) uniform LightPass { LightPassUniforms pass; };
 // The G-buffer in the target's layout (de-interleaved into tiles when interleaving).
-layout(binding = 0) uniform sampler2D surfacePosition;
-layout(binding = 1) uniform sampler2D surfaceNormal;
+layout(binding = LGH_TEXTURE_SURFACE_POSITION) uniform sampler2D surfacePosition;
+layout(binding = LGH_TEXTURE_SURFACE_NORMAL) uniform sampler2D surfaceNormal;
 #ifdef LGH_COUNT_OVERDRAW
-layout(r32ui, binding = 0) uniform coherent uimage2D fragmentCounts;
+layout(r32ui, binding = LGH_IMAGE_FRAGMENT_COUNTS) uniform coherent uimage2D fragmentCounts;
 #endif
 
 flat in vec3 lightPosition;
@@ -51,7 +53,7 @@ void main() {
 #ifdef LGH_SELECT_SHADOWS
   bool finest = uint(lightBlend.y) == kRoleFinest;
   if (!(finest && (pass.selectFlags & kSelectSkipFinest) != 0u)) {
-    float importance = dot(irradiance.rgb, vec3(0.2126, 0.7152, 0.0722));
+    float importance = luminance(irradiance.rgb);
     if ((pass.selectFlags & kSelectUniform) != 0u && importance > 0.0) importance = 1.0;
     uint pixelIndex = uint(pixel.y) * (pass.tilesPerAxis * pass.tileWidth) + uint(pixel.x);
     selectShadowSample(pixelIndex, lightId, importance, pass.shadowSamples, pass.frameSeed);

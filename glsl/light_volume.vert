@@ -13,6 +13,7 @@
 //                are rejected before shading too (render/passes/volume_culling.h).
 // With n x n interleaving the light is drawn into one tile only: its clip-space position is mapped
 // into that tile's block of the de-interleaved target and clipped to it with four clip distances.
+#include "shared/bindings.h"
 #include "shared/frame.glsl"
 #include "shared/light_pass_types.h"
 #include "shared/light_levels.h"
@@ -28,7 +29,7 @@ layout(std430, binding = LGH_BINDING_PASS0) readonly buffer GridLights { GpuGrid
 layout(location = 0) in uint sortedLightIndex;
 #endif
 // Deepest culling depth of the surfaces per texel of each level, in the target's (tiled) layout.
-layout(binding = 2) uniform sampler2D surfaceDepthPyramid;
+layout(binding = LGH_TEXTURE_SURFACE_DEPTH_PYRAMID) uniform sampler2D surfaceDepthPyramid;
 
 out gl_PerVertex {
   vec4 gl_Position;

@@ -4,6 +4,8 @@
 // mean of the k visibilities (importance selection, each sample already drawn in proportion to its
 // contribution) or the contribution-weighted mean (uniform selection).
 layout(local_size_x = 8, local_size_y = 8) in;
+#include "shared/color.glsl"
+#include "shared/bindings.h"
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
 #include "shared/bvh_traverse.glsl"
@@ -18,7 +20,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight inputLights[]; };
 layout(std430, binding = LGH_BINDING_PASS2) readonly buffer ShadowSlots { uint shadowSlots[]; };
 layout(std430, binding = LGH_BINDING_PASS3) readonly buffer GridLights { GpuGridLight gridLights[]; };
-layout(rgba32f, binding = 0) uniform writeonly image2D ratioOut;  // r: visibility ratio, g: rays traced
+layout(rgba32f, binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D ratioOut;  // r: visibility ratio, g: rays traced
 
 uniform uint samples;        // k
 uniform uint tilesPerAxis;   // the slots are in the light pass's (tiled) layout
@@ -79,7 +81,7 @@ void main() {
         vec3 e = blendWeight(role, distance(lightPosition, s.position), R) *
                  lightContribution(lightPosition, light.intensity, light.meanNormal, light.omniFraction, s.position,
                                    s.normal, clampDistance);
-        weight = dot(e, vec3(0.2126, 0.7152, 0.0722));
+        weight = luminance(e);
       }
       vec3 jitter = vec3(raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)));
       vec3 target = lightPosition + (spread / kRaisedCosineStd) * sigma * jitter;

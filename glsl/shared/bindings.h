@@ -31,6 +31,7 @@
 #define LGH_TEXTURE_GBUFFER_EMISSION 3
 #define LGH_TEXTURE_SURFACE_POSITION 0
 #define LGH_TEXTURE_SURFACE_NORMAL 1
+#define LGH_TEXTURE_SURFACE_DEPTH_PYRAMID 2  // light pass: max depth of the surfaces per tile (volume culling)
 // G-buffer pass: the material's textures while drawing.
 #define LGH_TEXTURE_MATERIAL_BASE_COLOR 0
 #define LGH_TEXTURE_MATERIAL_EMISSIVE 1
@@ -50,6 +51,8 @@
 #define LGH_IMAGE_RESOLVED_IRRADIANCE 0      // interleave resolve
 #define LGH_IMAGE_RESOLVED_FRAGMENT_COUNTS 1 // interleave resolve
 #define LGH_IMAGE_FRAGMENT_COUNTS 0          // light pass (overdraw)
+#define LGH_IMAGE_PYRAMID_FINER 0            // depth pyramid: the level read
+#define LGH_IMAGE_PYRAMID_COARSER 1          // depth pyramid: the level written
 #define LGH_IMAGE_DIRECT 0                   // direct light
 #define LGH_IMAGE_BRUTE_FORCE_IRRADIANCE 0   // compute brute force
 #define LGH_IMAGE_SHADOW_RATIO 0             // shadow rays

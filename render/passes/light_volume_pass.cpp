@@ -215,13 +215,13 @@ void LightVolumePass::prepareCulling(const std::vector<Draw>& draws, const GpuHi
 // What the light volumes read and write besides the framebuffer; after the culling preparation, which
 // uses image units, textures and storage bindings of its own.
 void LightVolumePass::bindInputs(const LightPassOptions& options, LightPassTarget& target) {
-  if (options.pass.overdraw) target.fragmentCounts->bindImage(0, GL_READ_WRITE);
+  if (options.pass.overdraw) target.fragmentCounts->bindImage(LGH_IMAGE_FRAGMENT_COUNTS, GL_READ_WRITE);
   if (options.shadows.samples > 0) {
     target.shadowSlots->totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
     target.shadowSlots->slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   }
-  target.position.bindTexture(0);
-  target.normal.bindTexture(1);
+  target.position.bindTexture(LGH_TEXTURE_SURFACE_POSITION);
+  target.normal.bindTexture(LGH_TEXTURE_SURFACE_NORMAL);
   if (options.pass.volumeCulling) culling_.bindPyramid();
 }
 

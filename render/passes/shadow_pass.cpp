@@ -18,7 +18,7 @@ void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const
   slots.slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   // A buffer must be bound even when there is no hierarchy (brute force): the input lights stand in.
   (hierarchy.gridLights ? hierarchy.gridLights : inputLights).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
-  rawRatio.bindImage(0, GL_WRITE_ONLY);
+  rawRatio.bindImage(LGH_IMAGE_SHADOW_RATIO, GL_WRITE_ONLY);
   program_.set("samples", unsigned(slots.k));
   program_.set("tilesPerAxis", unsigned(layout.tilesPerAxis));
   program_.set("tileSize", glm::uvec2(layout.tileSize));

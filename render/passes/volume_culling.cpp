@@ -87,7 +87,7 @@ void VolumeCulling::writeDepthAndSlices(const gl::Texture2D& position, float sce
   depthProgram_.use();
   depthProgram_.set("depthScale", sceneSize);
   depthProgram_.set("slices", kCullingSlices);
-  position.bindTexture(0);
+  position.bindTexture(LGH_TEXTURE_SURFACE_POSITION);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glDepthMask(GL_FALSE);
 
@@ -110,13 +110,13 @@ void VolumeCulling::buildPyramid(const gl::Texture2D& position, float sceneSize)
   if (!pyramidProgram_) pyramidProgram_ = gl::Program::compute("light_depth_pyramid.comp");
   pyramidProgram_.use();
   pyramidProgram_.set("depthScale", sceneSize);
-  position.bindTexture(0);
+  position.bindTexture(LGH_TEXTURE_SURFACE_POSITION);
   GLint levels = 1;
   glGetTextureParameteriv(pyramid_.id(), GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
   for (int level = 0; level < levels; ++level) {
     pyramidProgram_.set("level", level);
-    glBindImageTexture(0, pyramid_.id(), std::max(level - 1, 0), GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
-    glBindImageTexture(1, pyramid_.id(), level, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(LGH_IMAGE_PYRAMID_FINER, pyramid_.id(), std::max(level - 1, 0), GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+    glBindImageTexture(LGH_IMAGE_PYRAMID_COARSER, pyramid_.id(), level, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     pyramidProgram_.dispatch2D(std::max(pyramid_.width() >> level, 1), std::max(pyramid_.height() >> level, 1), {8, 8});
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
   }
@@ -164,7 +164,7 @@ void VolumeCulling::sortBySlice(const SortInputs& in) {
   }
 }
 
-void VolumeCulling::bindPyramid() const { pyramid_.bindTexture(2); }
+void VolumeCulling::bindPyramid() const { pyramid_.bindTexture(LGH_TEXTURE_SURFACE_DEPTH_PYRAMID); }
 
 void VolumeCulling::drawSorted() const {
   glBindVertexArray(sortedVertexArray_.id());
