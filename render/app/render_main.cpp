@@ -23,8 +23,8 @@ double msSince(Clock::time_point t) { return std::chrono::duration<double, std::
 // The project's default scene, found beside the source tree the binary was built from.
 std::filesystem::path defaultScene() { return std::filesystem::path(LGH_DATA_DIR) / "cornell_box.gltf"; }
 
-int run(int argc, char** argv) {
-  CLI::App app{"lgh-render: global illumination with a lighting grid hierarchy, rendered headless"};
+// What the command line asks for, besides the render settings.
+struct Command {
   std::filesystem::path scenePath = defaultScene();
   std::filesystem::path output = "render.png";
   std::string backend = "auto";
@@ -32,48 +32,101 @@ int run(int argc, char** argv) {
   bool quiet = false, debugGL = false;
   lgh::RenderSettings settings;
   lgh::AddedLightOptions addedLights;
+};
 
-  app.add_option("scene", scenePath, "glTF scene (.gltf or .glb)")->capture_default_str();
-  app.add_option("-o,--output", output, "output image: .png/.jpg (tone-mapped sRGB) or .exr/.hdr (linear HDR)")
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+void addOptions(CLI::App& app, Command& c) {
+  app.add_option("scene", c.scenePath, "glTF scene (.gltf or .glb)")->capture_default_str();
+  app.add_option("-o,--output", c.output, "output image: .png/.jpg (tone-mapped sRGB) or .exr/.hdr (linear HDR)")
       ->capture_default_str();
-  app.add_option("--backend", backend, "OpenGL context: " + [] {
-    std::string s;
-    for (const auto& n : lgh::gl::backendNames()) s += (s.empty() ? "" : ", ") + n;
-    return s;
-  }())->capture_default_str();
-  app.add_option("--aov", aovOutputs, "also write an AOV: NAME=FILE, NAME one of " + [] {
-    std::string s;
-    for (const auto& n : lgh::aovNames()) s += (s.empty() ? "" : ", ") + n;
-    return s;
-  }());
-  app.add_flag("-q,--quiet", quiet, "print nothing but errors");
-  app.add_flag("--debug-gl", debugGL, "KHR_debug context: GL errors abort the render with the driver's message");
-  lgh::addSettingsOptions(app, settings);
-  lgh::addLightOptions(app, addedLights);
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--backend", c.backend, "OpenGL context: " + joined(lgh::gl::backendNames()))->capture_default_str();
+  app.add_option("--aov", c.aovOutputs, "also write an AOV: NAME=FILE, NAME one of " + joined(lgh::aovNames()));
+  app.add_flag("-q,--quiet", c.quiet, "print nothing but errors");
+  app.add_flag("--debug-gl", c.debugGL, "KHR_debug context: GL errors abort the render with the driver's message");
+  lgh::addSettingsOptions(app, c.settings);
+  lgh::addLightOptions(app, c.addedLights);
+}
 
-  // Validate everything cheap before any work: a bad AOV name or extension fails in milliseconds.
+// The --aov requests by AOV, checked (names, extensions, folders) before any work.
+std::map<lgh::Aov, std::filesystem::path> checkedAovs(const Command& c) {
   std::map<lgh::Aov, std::filesystem::path> aovs;
-  for (const std::string& spec : aovOutputs) {
+  for (const std::string& spec : c.aovOutputs) {
     const size_t eq = spec.find('=');
     if (eq == std::string::npos) throw std::invalid_argument("--aov expects NAME=FILE, got '" + spec + "'");
     aovs[lgh::parseAov(spec.substr(0, eq))] = spec.substr(eq + 1);
   }
-  const lgh::ToneMap toneMap = lgh::parseToneMap(settings.image.toneMap);
-  lgh::checkImagePath(output);
+  lgh::checkImagePath(c.output);
   for (const auto& [aov, path] : aovs) lgh::checkImagePath(path);
+  return aovs;
+}
+
+void printLightPassSummary(const lgh::RenderSettings& settings, const lgh::LightStats& ls) {
+  std::printf("S0         %zu input lights: %zu point lights, %zu emitter samples, %zu VPLs (%d bounces)\n",
+              ls.inputLights, ls.pointLights, ls.emitterSamples, ls.vpls, settings.inputLights.bounces);
+  std::string perLevel;
+  for (size_t l = 0; l < ls.lightsPerLevel.size(); ++l)
+    if (ls.lightsPerLevel[l] > 0) perLevel += " S" + std::to_string(l) + ":" + std::to_string(ls.lightsPerLevel[l]);
+  const lgh::LightPassSettings& pass = settings.lightPass;
+  if (pass.bruteForce)
+    std::printf("light pass brute force over S0 (%zu lights at every pixel)\n", ls.inputLights);
+  else
+    std::printf("LGH        L = %d, alpha %.3g, start level %d, interleave %dx%d, drawn%s\n", ls.levels,
+                double(pass.alpha), pass.startLevel, pass.interleave, pass.interleave, perLevel.c_str());
+  if (settings.shadows.samples > 0)
+    std::printf("shadows    k = %d per pixel (%s), %s, filter %d passes\n", settings.shadows.samples,
+                settings.shadows.uniform ? "uniform" : "by contribution",
+                settings.shadows.skipFinest ? "finest level skipped" : "all levels", settings.filter.passes);
+  if (pass.overdraw)
+    std::printf("overdraw   %.1f fragments rasterized per pixel (max %u), %.1f shaded, efficiency %.2f (%s volumes)\n",
+                ls.rasterizedPerPixel, ls.maxRasterized, ls.shadedPerPixel, ls.efficiency(),
+                pass.volumeCulling ? "culled" : "cube");
+}
+
+void printSummary(const Command& c, const lgh::gl::Context& context, const lgh::SceneGpu& sceneGpu,
+                  const lgh::Camera& camera, const lgh::FrameStats& stats, double loadMs, double setupMs) {
+  const lgh::Scene& scene = sceneGpu.scene();
+  std::printf("scene      %s\n", c.scenePath.string().c_str());
+  std::printf("context    %s\n", context.description().c_str());
+  std::printf("image      %d x %d -> %s\n", c.settings.image.width, c.settings.image.height, c.output.string().c_str());
+  std::printf("camera     %s\n", camera.name.empty() ? "(framing the scene bounds)" : camera.name.c_str());
+  std::printf("triangles  %zu (BVH: %zu nodes, depth %d, built in %.1f ms)\n", scene.triangleCount(),
+              sceneGpu.bvh().stats.nodeCount, sceneGpu.bvh().stats.maxDepth, sceneGpu.bvhBuildMs());
+  std::printf("lights     %zu punctual, %zu emissive materials\n", scene.lights.size(),
+              size_t(std::count_if(scene.materials.begin(), scene.materials.end(),
+                                   [](const lgh::Material& m) { return m.isEmissive(); })));
+  if (c.settings.indirect) printLightPassSummary(c.settings, stats.lights);
+  std::printf("load       %.1f ms, GPU setup %.1f ms\n", loadMs, setupMs);
+  std::printf("passes     (wall ms, glFinish-bracketed)\n");
+  for (const auto& p : stats.passes) std::printf("  %-18s %9.2f\n", p.name.c_str(), p.wallMs);
+  std::printf("  %-18s %9.2f\n", "total", stats.totalMs());
+}
+
+int run(int argc, char** argv) {
+  CLI::App app{"lgh-render: global illumination with a lighting grid hierarchy, rendered headless"};
+  Command c;
+  addOptions(app, c);
+  CLI11_PARSE(app, argc, argv);
+  const lgh::RenderSettings& settings = c.settings;
+  // Everything cheap is validated before any work: a bad AOV name or extension fails in milliseconds.
+  const std::map<lgh::Aov, std::filesystem::path> aovs = checkedAovs(c);
+  const lgh::ToneMap toneMap = lgh::parseToneMap(settings.image.toneMap);
 
   const auto t0 = Clock::now();
-  lgh::Scene scene = lgh::loadScene(scenePath);
-  lgh::addCommandLineLights(scene, addedLights.suns, addedLights.points);
+  lgh::Scene scene = lgh::loadScene(c.scenePath);
+  lgh::addCommandLineLights(scene, c.addedLights.suns, c.addedLights.points);
   const double loadMs = msSince(t0);
   for (const std::string& w : scene.warnings) std::cerr << "lgh-render: warning: " << w << "\n";
   if (!lgh::sceneHasLight(scene)) std::cerr << "lgh-render: note: " << lgh::noLightHint() << "\n";
   const lgh::Camera camera = lgh::resolveCamera(scene, settings);
 
   lgh::gl::ContextOptions contextOptions;
-  contextOptions.backend = lgh::gl::parseBackend(backend);
-  contextOptions.debug = debugGL;
+  contextOptions.backend = lgh::gl::parseBackend(c.backend);
+  contextOptions.debug = c.debugGL;
   const auto context = lgh::gl::Context::create(contextOptions);
 
   const auto t1 = Clock::now();
@@ -82,50 +135,14 @@ int run(int argc, char** argv) {
   const double setupMs = msSince(t1);
   const lgh::FrameStats stats = renderer.render(lgh::makeCameraView(camera, settings.image.width, settings.image.height));
 
-  lgh::writeImage(output, renderer.readImage(lgh::Aov::Final), settings.image.exposure, toneMap);
+  lgh::writeImage(c.output, renderer.readImage(lgh::Aov::Final), settings.image.exposure, toneMap);
   for (const auto& [aov, path] : aovs) {
     if (lgh::isDataAov(aov))
       lgh::writeImage(path, renderer.readImage(aov), 0.0f, lgh::ToneMap::Clamp);
     else
       lgh::writeImage(path, renderer.readImage(aov), settings.image.exposure, toneMap);
   }
-
-  if (!quiet) {
-    std::printf("scene      %s\n", scenePath.string().c_str());
-    std::printf("context    %s\n", context->description().c_str());
-    std::printf("image      %d x %d -> %s\n", settings.image.width, settings.image.height, output.string().c_str());
-    std::printf("camera     %s\n", camera.name.empty() ? "(framing the scene bounds)" : camera.name.c_str());
-    std::printf("triangles  %zu (BVH: %zu nodes, depth %d, built in %.1f ms)\n", scene.triangleCount(),
-                sceneGpu.bvh().stats.nodeCount, sceneGpu.bvh().stats.maxDepth, sceneGpu.bvhBuildMs());
-    std::printf("lights     %zu punctual, %zu emissive materials\n", scene.lights.size(),
-                size_t(std::count_if(scene.materials.begin(), scene.materials.end(),
-                                     [](const lgh::Material& m) { return m.isEmissive(); })));
-    const lgh::LightStats& ls = stats.lights;
-    if (settings.indirect) {
-      std::printf("S0         %zu input lights: %zu point lights, %zu emitter samples, %zu VPLs (%d bounces)\n",
-                  ls.inputLights, ls.pointLights, ls.emitterSamples, ls.vpls, settings.inputLights.bounces);
-      std::string perLevel;
-      for (size_t l = 0; l < ls.lightsPerLevel.size(); ++l)
-        if (ls.lightsPerLevel[l] > 0) perLevel += " S" + std::to_string(l) + ":" + std::to_string(ls.lightsPerLevel[l]);
-      if (settings.lightPass.bruteForce)
-        std::printf("light pass brute force over S0 (%zu lights at every pixel)\n", ls.inputLights);
-      else
-        std::printf("LGH        L = %d, alpha %.3g, start level %d, interleave %dx%d, drawn%s\n", ls.levels,
-                    double(settings.lightPass.alpha), settings.lightPass.startLevel, settings.lightPass.interleave, settings.lightPass.interleave, perLevel.c_str());
-      if (settings.shadows.samples > 0)
-        std::printf("shadows    k = %d per pixel (%s), %s, filter %d passes\n", settings.shadows.samples,
-                    settings.shadows.uniform ? "uniform" : "by contribution",
-                    settings.shadows.skipFinest ? "finest level skipped" : "all levels", settings.filter.passes);
-      if (settings.lightPass.overdraw)
-        std::printf("overdraw   %.1f fragments rasterized per pixel (max %u), %.1f shaded, efficiency %.2f (%s volumes)\n",
-                    ls.rasterizedPerPixel, ls.maxRasterized, ls.shadedPerPixel, ls.efficiency(),
-                    settings.lightPass.volumeCulling ? "culled" : "cube");
-    }
-    std::printf("load       %.1f ms, GPU setup %.1f ms\n", loadMs, setupMs);
-    std::printf("passes     (wall ms, glFinish-bracketed)\n");
-    for (const auto& p : stats.passes) std::printf("  %-18s %9.2f\n", p.name.c_str(), p.wallMs);
-    std::printf("  %-18s %9.2f\n", "total", stats.totalMs());
-  }
+  if (!c.quiet) printSummary(c, *context, sceneGpu, camera, stats, loadMs, setupMs);
   if (stats.nonFinitePixels > 0)
     std::cerr << "lgh-render: warning: " << stats.nonFinitePixels << " pixels were NaN or Inf and were written black\n";
   return 0;
