@@ -40,41 +40,47 @@ CLI::App* addFrameCommand(CLI::App& app, FrameBenchOptions& options) {
   return command;
 }
 
-int runFrameBench(const FrameBenchOptions& options) {
-  RenderBench bench(options.render);
-  RenderSettings settings = options.render.settings;
-  bench.renderer().renderToVplTarget(settings, size_t(settings.inputLights.vpls));
-  int exitCode = 0;
+namespace {
 
-  std::map<int, std::map<std::string, std::vector<double>>> times;  // [n][pass] -> samples
-  std::map<int, std::vector<double>> totals;
+// Per interleaving factor: each pass's timed samples, the frame totals, and the fragments per pixel.
+struct FrameTimes {
+  std::map<int, std::map<std::string, std::vector<double>>> passMs;  // [n][pass] -> samples
+  std::map<int, std::vector<double>> totalMs;
   std::map<int, double> fragments;
-  LightStats lights;
+  LightStats lights;  // of the last counted frame
+  bool nonFinite = false;
+};
+
+FrameTimes measureFrames(RenderBench& bench, const RenderSettings& settings, const FrameBenchOptions& options) {
+  FrameTimes t;
   for (int n : options.interleave) {
     RenderSettings s = settings;
     s.lightPass.interleave = n;
     s.lightPass.overdraw = true;
     const FrameStats counted = bench.renderer().render(s);  // warm-up, with the fragment counter
-    fragments[n] = counted.lights.rasterizedPerPixel;
-    lights = counted.lights;
+    t.fragments[n] = counted.lights.rasterizedPerPixel;
+    t.lights = counted.lights;
     s.lightPass.overdraw = false;
     for (int r = 0; r < options.repeats; ++r) {
       s.inputLights.seed = settings.inputLights.seed + 1 + r;  // new VPLs every frame, as with moving lights: every pass runs
       const FrameStats stats = bench.renderer().render(s);
-      if (stats.nonFinitePixels > 0) exitCode = 1;
-      for (const std::string& pass : kPasses) times[n][pass].push_back(stats.passMs(pass));
-      totals[n].push_back(stats.totalMs());
+      t.nonFinite |= stats.nonFinitePixels > 0;
+      for (const std::string& pass : kPasses) t.passMs[n][pass].push_back(stats.passMs(pass));
+      t.totalMs[n].push_back(stats.totalMs());
       if (options.compareCubes) {
         // The same frame again (same lights: nothing is rebuilt) with cube volumes, for the ratio.
         RenderSettings cubes = s;
         cubes.lightPass.volumeCulling = false;
-        times[n][kCubeLightPass].push_back(bench.renderer().render(cubes).passMs(passes::kLightPass));
+        t.passMs[n][kCubeLightPass].push_back(bench.renderer().render(cubes).passMs(passes::kLightPass));
       }
     }
     std::fprintf(stderr, "  %dx%d done\n", n, n);
   }
+  return t;
+}
 
-  const size_t gridLights = gridLightsOf(lights);
+void printFrames(RenderBench& bench, const RenderSettings& settings, const FrameBenchOptions& options,
+                 FrameTimes& t) {
   const int width = settings.image.width, height = settings.image.height;
   const int bounces = settings.inputLights.bounces, k = settings.shadows.samples;
   std::printf("lgh-bench frame: %s (%s), %d x %d, %s\n", bench.scenePath().filename().string().c_str(),
@@ -82,8 +88,8 @@ int runFrameBench(const FrameBenchOptions& options) {
   std::printf(
       "%s VPLs (%d bounce%s), L = %d, %s grid lights, alpha %.3g, k = %d (%s shadow rays per frame); "
       "median of %d frames, glFinish-bracketed ms\n\n",
-      formatCount(lights.vpls).c_str(), bounces, bounces == 1 ? "" : "s", lights.levels,
-      formatCount(gridLights).c_str(), double(settings.lightPass.alpha), k,
+      formatCount(t.lights.vpls).c_str(), bounces, bounces == 1 ? "" : "s", t.lights.levels,
+      formatCount(gridLightsOf(t.lights)).c_str(), double(settings.lightPass.alpha), k,
       formatCount(size_t(width) * size_t(height) * size_t(k)).c_str(), options.repeats);
   std::vector<std::string> headers{"pass"};
   for (int n : options.interleave) headers.push_back(std::to_string(n) + "x" + std::to_string(n));
@@ -91,7 +97,7 @@ int runFrameBench(const FrameBenchOptions& options) {
   for (const std::string& pass : kPasses) {
     std::vector<std::string> row{pass};
     for (int n : options.interleave) {
-      const double median = spreadOf(times[n][pass]).median;
+      const double median = spreadOf(t.passMs[n][pass]).median;
       row.push_back(median > 0 ? formatMs(median) : "-");
     }
     table.addRow(row);
@@ -99,7 +105,8 @@ int runFrameBench(const FrameBenchOptions& options) {
   if (options.compareCubes) {
     std::vector<std::string> cubes{kCubeLightPass}, ratio{"cubes / culled"};
     for (int n : options.interleave) {
-      const double cube = spreadOf(times[n][kCubeLightPass]).median, culled = spreadOf(times[n][passes::kLightPass]).median;
+      const double cube = spreadOf(t.passMs[n][kCubeLightPass]).median;
+      const double culled = spreadOf(t.passMs[n][passes::kLightPass]).median;
       cubes.push_back(formatMs(cube));
       ratio.push_back(formatRatio(cube / std::max(culled, 1e-30)));
     }
@@ -108,31 +115,39 @@ int runFrameBench(const FrameBenchOptions& options) {
   }
   std::vector<std::string> total{"total"}, frags{"fragments/px"};
   for (int n : options.interleave) {
-    total.push_back(formatSpread(spreadOf(totals[n])));
-    frags.push_back(formatMs(fragments[n]));
+    total.push_back(formatSpread(spreadOf(t.totalMs[n])));
+    frags.push_back(formatMs(t.fragments[n]));
   }
   table.addRow(total);
   table.addRow(frags);
   table.print(stdout);
+}
 
-  if (!options.csvPath.empty()) {
-    std::ofstream csv(options.csvPath);
-    if (!csv) throw std::runtime_error(options.csvPath + ": cannot open for writing");
-    csv << "interleave,pass,median_ms,min_ms,max_ms\n";
-    for (int n : options.interleave) {
-      for (const std::string& pass : kPasses) {
-        const Spread t = spreadOf(times[n][pass]);
-        csv << n << "," << pass << "," << t.median << "," << t.min << "," << t.max << "\n";
-      }
-      if (options.compareCubes) {
-        const Spread c = spreadOf(times[n][kCubeLightPass]);
-        csv << n << "," << kCubeLightPass << "," << c.median << "," << c.min << "," << c.max << "\n";
-      }
-      const Spread t = spreadOf(totals[n]);
-      csv << n << ",total," << t.median << "," << t.min << "," << t.max << "\n";
-    }
+void writeCsv(const std::string& path, const FrameBenchOptions& options, FrameTimes& t) {
+  std::ofstream csv(path);
+  if (!csv) throw std::runtime_error(path + ": cannot open for writing");
+  csv << "interleave,pass,median_ms,min_ms,max_ms\n";
+  auto row = [&](int n, const std::string& name, const std::vector<double>& samples) {
+    const Spread s = spreadOf(samples);
+    csv << n << "," << name << "," << s.median << "," << s.min << "," << s.max << "\n";
+  };
+  for (int n : options.interleave) {
+    for (const std::string& pass : kPasses) row(n, pass, t.passMs[n][pass]);
+    if (options.compareCubes) row(n, kCubeLightPass, t.passMs[n][kCubeLightPass]);
+    row(n, "total", t.totalMs[n]);
   }
-  return exitCode;
+}
+
+}  // namespace
+
+int runFrameBench(const FrameBenchOptions& options) {
+  RenderBench bench(options.render);
+  RenderSettings settings = options.render.settings;
+  bench.renderer().renderToVplTarget(settings, size_t(settings.inputLights.vpls));
+  FrameTimes times = measureFrames(bench, settings, options);
+  printFrames(bench, settings, options, times);
+  if (!options.csvPath.empty()) writeCsv(options.csvPath, options, times);
+  return times.nonFinite ? 1 : 0;
 }
 
 }  // namespace lgh::bench
