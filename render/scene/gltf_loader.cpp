@@ -831,6 +831,91 @@ class GltfLoader {
 
   // Transforms one primitive to world space (double) and appends its vertices (only those its
   // triangles use) and triangles (to its material's bucket).
+  // The primitive's triangles as corner indices (its indices, or 0..n-1, triangulated from strips and fans).
+  std::vector<std::uint32_t> primitiveTriangles(const tinygltf::Primitive& prim, const std::string& what,
+                                                size_t vertexCount) {
+    std::vector<std::uint32_t> indices;
+    if (prim.indices >= 0) {
+      indices = readIndices(prim.indices, what + " indices");
+      for (size_t k = 0; k < indices.size(); ++k)
+        if (indices[k] >= vertexCount)
+          fail(what + ": index " + std::to_string(indices[k]) + " (entry " + std::to_string(k) +
+               ") is out of range: the primitive has " + std::to_string(vertexCount) + " vertices");
+    } else {
+      indices.resize(vertexCount);
+      for (size_t v = 0; v < vertexCount; ++v) indices[v] = std::uint32_t(v);
+    }
+    if (prim.mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3 != 0)
+      skippedPrimitives_.add(what + " (trailing indices)");
+    return triangulate(prim.mode, indices);
+  }
+
+  // A texture whose TEXCOORD set the primitive lacks would sample one texel everywhere
+  // (validator: MESH_PRIMITIVE_TOO_FEW_TEXCOORDS).
+  void checkTexCoordSets(const tinygltf::Primitive& prim, const std::string& what,
+                         const std::vector<glm::vec2> (&texcoords)[2]) {
+    if (prim.material < 0) return;
+    const tinygltf::Material& m = model_.materials[size_t(prim.material)];
+    const std::pair<const tinygltf::TextureInfo*, const char*> slots[] = {
+        {&m.pbrMetallicRoughness.baseColorTexture, "base colour"}, {&m.emissiveTexture, "emissive"}};
+    for (const auto& [info, slot] : slots) {
+      const int set = effectiveTexCoord(*info);
+      if (info->index < 0 || set < 0 || set > 1) continue;  // sets >= 2 are ignored with a warning later
+      if (texcoords[set].empty())
+        fail(what + ": its material " + label("material", size_t(prim.material), m.name) + " has a " + slot +
+             " texture that reads TEXCOORD_" + std::to_string(set) + ", which the primitive does not have");
+    }
+  }
+
+  // Appends the triangles' vertices (world positions, normals, texture coordinates, colours) to the
+  // scene and their indices to `bucket` (the material's triangle list).
+  void emitTriangles(const std::vector<std::uint32_t>& tris, const std::vector<glm::dvec3>& worldPositions,
+                     const std::vector<glm::vec3>& normals, const glm::mat3& normalMatrix,
+                     const std::vector<glm::vec2> (&texcoords)[2], const std::vector<glm::vec4>& colors,
+                     std::vector<std::uint32_t>& bucket, const std::string& what) {
+    const auto emitVertex = [&](std::uint32_t v, const glm::vec3& n) {
+      worldPositions_.push_back(worldPositions[v]);
+      scene_.normals.push_back(n);
+      scene_.texcoords.push_back(texcoords[0].empty() ? glm::vec2(0.0f) : texcoords[0][v]);
+      scene_.texcoords1.push_back(texcoords[1].empty() ? glm::vec2(0.0f) : texcoords[1][v]);
+      scene_.colors.push_back(colors.empty() ? glm::vec4(1.0f) : colors[v]);
+    };
+    const glm::vec3 up(0.0f, 1.0f, 0.0f);  // normal of zero-area triangles: any unit vector, never NaN
+    if (normals.empty()) {
+      // Flat shading needs one vertex per corner: the same position gets a different normal in
+      // each triangle it belongs to.
+      for (size_t t = 0; t < tris.size(); t += 3) {
+        const glm::vec3 n =
+            faceNormal(worldPositions[tris[t]], worldPositions[tris[t + 1]], worldPositions[tris[t + 2]], up);
+        for (int c = 0; c < 3; ++c) {
+          bucket.push_back(std::uint32_t(worldPositions_.size()));
+          emitVertex(tris[t + c], n);
+        }
+      }
+    } else {
+      // Emit each used vertex once (primitives often index a small part of a shared accessor).
+      std::vector<std::uint32_t> remap(worldPositions.size(), std::numeric_limits<std::uint32_t>::max());
+      for (size_t t = 0; t < tris.size(); t += 3) {
+        for (int c = 0; c < 3; ++c) {
+          const std::uint32_t v = tris[t + c];
+          if (remap[v] == std::numeric_limits<std::uint32_t>::max()) {
+            remap[v] = std::uint32_t(worldPositions_.size());
+            glm::vec3 n = normalMatrix * normals[v];
+            const float length = glm::length(n);
+            if (length > 0.0f && std::isfinite(length)) {
+              n /= length;
+            } else {  // zero normal in the file: use the face's
+              badNormals_.add(what);
+              n = faceNormal(worldPositions[tris[t]], worldPositions[tris[t + 1]], worldPositions[tris[t + 2]], up);
+            }
+            emitVertex(v, n);
+          }
+          bucket.push_back(remap[v]);
+        }
+      }
+    }
+  }
+
   void appendPrimitive(const tinygltf::Primitive& prim, const std::string& what, const glm::dmat4& world) {
     if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) {
       skippedPrimitives_.add(what);
@@ -849,20 +934,7 @@ class GltfLoader {
     const std::vector<glm::vec3> positions = readAttribute<3>(positionAccessor, "POSITION", what, size_t(-1));
     const size_t vertexCount = positions.size();
 
-    std::vector<std::uint32_t> indices;
-    if (prim.indices >= 0) {
-      indices = readIndices(prim.indices, what + " indices");
-      for (size_t k = 0; k < indices.size(); ++k)
-        if (indices[k] >= vertexCount)
-          fail(what + ": index " + std::to_string(indices[k]) + " (entry " + std::to_string(k) +
-               ") is out of range: the primitive has " + std::to_string(vertexCount) + " vertices");
-    } else {
-      indices.resize(vertexCount);
-      for (size_t v = 0; v < vertexCount; ++v) indices[v] = std::uint32_t(v);
-    }
-    if (prim.mode == TINYGLTF_MODE_TRIANGLES && indices.size() % 3 != 0)
-      skippedPrimitives_.add(what + " (trailing indices)");
-    std::vector<std::uint32_t> tris = triangulate(prim.mode, indices);
+    std::vector<std::uint32_t> tris = primitiveTriangles(prim, what, vertexCount);
     const std::uint32_t material = materialSlot(prim.material, what);
     if (tris.empty()) return;
 
@@ -876,20 +948,7 @@ class GltfLoader {
     if (const int a = attribute("TEXCOORD_0"); a >= 0) texcoords[0] = readAttribute<2>(a, "TEXCOORD_0", what, vertexCount);
     if (const int a = attribute("TEXCOORD_1"); a >= 0) texcoords[1] = readAttribute<2>(a, "TEXCOORD_1", what, vertexCount);
     if (const int a = attribute("COLOR_0"); a >= 0) colors = readColors(a, what, vertexCount);
-    // A texture whose TEXCOORD set the primitive lacks would sample one texel everywhere
-    // (validator: MESH_PRIMITIVE_TOO_FEW_TEXCOORDS).
-    if (prim.material >= 0) {
-      const tinygltf::Material& m = model_.materials[size_t(prim.material)];
-      const std::pair<const tinygltf::TextureInfo*, const char*> slots[] = {
-          {&m.pbrMetallicRoughness.baseColorTexture, "base colour"}, {&m.emissiveTexture, "emissive"}};
-      for (const auto& [info, slot] : slots) {
-        const int set = effectiveTexCoord(*info);
-        if (info->index < 0 || set < 0 || set > 1) continue;  // sets >= 2 are ignored with a warning later
-        if (texcoords[set].empty())
-          fail(what + ": its material " + label("material", size_t(prim.material), m.name) + " has a " + slot +
-               " texture that reads TEXCOORD_" + std::to_string(set) + ", which the primitive does not have");
-      }
-    }
+    checkTexCoordSets(prim, what, texcoords);
 
     // A mirroring transform turns counter-clockwise triangles clockwise: swap two corners so the
     // front face (and the flat normal) stay on the side glTF meant.
@@ -910,48 +969,7 @@ class GltfLoader {
                " is not finite (NaN or Inf) after the node transform, or beyond float range");
     }
 
-    const auto emitVertex = [&](std::uint32_t v, const glm::vec3& n) {
-      worldPositions_.push_back(worldPositions[v]);
-      scene_.normals.push_back(n);
-      scene_.texcoords.push_back(texcoords[0].empty() ? glm::vec2(0.0f) : texcoords[0][v]);
-      scene_.texcoords1.push_back(texcoords[1].empty() ? glm::vec2(0.0f) : texcoords[1][v]);
-      scene_.colors.push_back(colors.empty() ? glm::vec4(1.0f) : colors[v]);
-    };
-    std::vector<std::uint32_t>& bucket = trianglesFor(material);
-    const glm::vec3 up(0.0f, 1.0f, 0.0f);  // normal of zero-area triangles: any unit vector, never NaN
-    if (normals.empty()) {
-      // Flat shading needs one vertex per corner: the same position gets a different normal in
-      // each triangle it belongs to.
-      for (size_t t = 0; t < tris.size(); t += 3) {
-        const glm::vec3 n =
-            faceNormal(worldPositions[tris[t]], worldPositions[tris[t + 1]], worldPositions[tris[t + 2]], up);
-        for (int c = 0; c < 3; ++c) {
-          bucket.push_back(std::uint32_t(worldPositions_.size()));
-          emitVertex(tris[t + c], n);
-        }
-      }
-    } else {
-      // Emit each used vertex once (primitives often index a small part of a shared accessor).
-      std::vector<std::uint32_t> remap(vertexCount, std::numeric_limits<std::uint32_t>::max());
-      for (size_t t = 0; t < tris.size(); t += 3) {
-        for (int c = 0; c < 3; ++c) {
-          const std::uint32_t v = tris[t + c];
-          if (remap[v] == std::numeric_limits<std::uint32_t>::max()) {
-            remap[v] = std::uint32_t(worldPositions_.size());
-            glm::vec3 n = normalMatrix * normals[v];
-            const float length = glm::length(n);
-            if (length > 0.0f && std::isfinite(length)) {
-              n /= length;
-            } else {  // zero normal in the file: use the face's
-              badNormals_.add(what);
-              n = faceNormal(worldPositions[tris[t]], worldPositions[tris[t + 1]], worldPositions[tris[t + 2]], up);
-            }
-            emitVertex(v, n);
-          }
-          bucket.push_back(remap[v]);
-        }
-      }
-    }
+    emitTriangles(tris, worldPositions, normals, normalMatrix, texcoords, colors, trianglesFor(material), what);
     triangleCount_ += tris.size() / 3;
   }
 
