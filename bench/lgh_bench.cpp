@@ -2,7 +2,7 @@
 //   lgh-bench build [--lights 1K,10K,100K,1M --repeats N --csv F --json F ...]   (paper Tables 1 and 2)
 //   lgh-bench light [--vpls 1K,10K,100K,1M --interleave-vpls 100K ...]           (paper Fig. 5, interleaving)
 //   lgh-bench frame [--vpls 100K --shadow-samples 4 --interleave 1,2,4 ...]        (paper Table 3)
-//   lgh-bench sweep [--preset readme|smoke --scene S@CAM --alpha ... --csv ...]      (DESIGN 7: error vs time)
+//   lgh-bench sweep [--preset readme|smoke --scene S@CAM --alpha ... --csv ...]      (docs/design.md §7: error vs time)
 #include <CLI/CLI.hpp>
 
 #include <functional>

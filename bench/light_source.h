@@ -29,7 +29,7 @@ class LightSource {
   // `count` lights; the same count and seed give the same set. Every set carries the same total
   // intensity, so sets of different sizes light the scene alike (as VPLs from one light would).
   std::vector<Light> lights(size_t count, std::uint32_t seed) const;
-  // The build's smallest top-cell edge: 1e-4 of the region's diagonal (DESIGN 2).
+  // The build's smallest top-cell edge: 1e-4 of the region's diagonal (docs/design.md §2).
   double eMin() const;
   // One line for the output, e.g. "VPL-like: points on the surfaces of sponza_sun.gltf (66,447 triangles)".
   std::string description() const;

@@ -1,5 +1,5 @@
 #pragma once
-// The exact reference the sweep measures against (DESIGN 7), independent of the GL code path: for a
+// The exact reference the sweep measures against (docs/design.md §7), independent of the GL code path: for a
 // G-buffer read back from the renderer (positions, normals) and the renderer's input lights S0, every
 // pixel sums every light's contribution (lgh/shading.h, double precision, the renderer's clamp
 // distance) with its true visibility, traced with Embree on the CPU (std::thread workers,

@@ -1,5 +1,5 @@
 #pragma once
-// lgh-bench sweep: the speed/accuracy trade (DESIGN 7). Renders a grid of parameters (alpha, start
+// lgh-bench sweep: the speed/accuracy trade (docs/design.md §7). Renders a grid of parameters (alpha, start
 // level, interleaving, k, shadow filter) on one or more scenes and VPL counts, repeats each point,
 // and measures every image against the exact reference of bench/reference.h (Embree, CPU):
 // relative RMSE and PSNR of the unshadowed irradiance and of the shadowed one (irradiance x

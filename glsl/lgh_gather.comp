@@ -3,7 +3,7 @@
 // up the level-l vertices that can hold children for it (a child's centre lies within one cell of
 // its own vertex, so only level-l vertices within 2 of 2V per axis qualify: 5^3 lookups) and sums
 // those whose centre lies in one of its 8 cells, with the trilinear weight relative to it. A child
-// brings its own variance, so the second moments stay exact (DESIGN 2).
+// brings its own variance, so the second moments stay exact (docs/design.md §2).
 layout(local_size_x = 64) in;
 #include "shared/dispatch.glsl"
 #include "shared/lgh_grid.glsl"

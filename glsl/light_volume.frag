@@ -3,7 +3,7 @@
 #extension GL_NV_shader_atomic_float : require
 #endif
 // Shades one grid light at the surface under this pixel: irradiance weighted by the light's blending
-// function (DESIGN 4), added into the target. Albedo is applied at compositing, so interleaving and
+// function (docs/design.md §4), added into the target. Albedo is applied at compositing, so interleaving and
 // filtering work on smooth irradiance, not on textured radiance.
 #include "shared/color.glsl"
 #include "shared/bindings.h"

@@ -1,5 +1,5 @@
 #version 450 core
-// One shadow ray per selected light per pixel (DESIGN 5): from the pixel's surface to the light,
+// One shadow ray per selected light per pixel (docs/design.md §5): from the pixel's surface to the light,
 // jittered inside its cluster, any-hit through the scene BVH. Writes the raw visibility ratio: the
 // mean of the k visibilities (importance selection, each sample already drawn in proportion to its
 // contribution) or the contribution-weighted mean (uniform selection).

@@ -1,7 +1,7 @@
 #pragma once
 
 // The lighting grid hierarchy: levels 1..L of grid lights, each level a coarser stand-in for the
-// input lights S0 (Lin & Yuksel 2019, Sec. 3.1; DESIGN.md Sec. 2).
+// input lights S0 (Lin & Yuksel 2019, Sec. 3.1; docs/design.md §2).
 //
 // A grid light is what a grid vertex collects from the lights around it, each weighted by its
 // trilinear weight w and importance a = lum(I):

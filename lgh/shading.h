@@ -1,6 +1,6 @@
 #pragma once
 
-// The shading model shared by every light of every level (DESIGN.md Sec. 4), without the surface's
+// The shading model shared by every light of every level (docs/design.md §4), without the surface's
 // rho/pi and without the blending weight: callers multiply those in.
 
 #include <glm/vec3.hpp>
@@ -18,9 +18,9 @@ namespace lgh {
 // pi I (1 - o) + 4 pi I o = pi I (1 + 3o). Over the sphere, max(0, m·u) integrates to pi |m| and a
 // constant c to 4 pi c, so the constant part (1 - |m| - o)/4 + o gives
 //   pi |m| + pi (1 - |m| - o) + 4 pi o = pi (1 + 3o)
-// for every |m|: the lobe conserves the cluster's flux however its normals are spread. (DESIGN.md
-// writes (1 - |m|)/2 for the constant; that would double the flux of a cluster whose normals cancel,
-// |m| = 0, which emits pi I but would get 2 pi I.) The directional part keeps the cluster's net
+// for every |m|: the lobe conserves the cluster's flux however its normals are spread. (Our first
+// design wrote (1 - |m|)/2 for the constant; that would double the flux of a cluster whose normals
+// cancel, |m| = 0, which emits pi I but would get 2 pi I: docs/design.md §11.) The directional part keeps the cluster's net
 // orientation; the rest, which the normals cancelled, is spread evenly.
 // Special cases: one VPL (|m| = 1, o = 0) gives max(0, n·u) exactly; omni lights (m = 0, o = 1) give 1.
 // Since |m| <= 1 - o for any cluster (hierarchy.h), the constant part is >= 0; the clamp guards

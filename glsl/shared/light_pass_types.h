@@ -45,7 +45,7 @@ GPU_STRUCT(LightPassUniforms) {
   uint bruteForce;   // 1: weight 1 for every light
   float cullingDepthScale;  // cullingDepth()'s scale, as the depth target was written with
 
-  // Shadow-sample selection (DESIGN 5)
+  // Shadow-sample selection (docs/design.md §5)
   uint shadowSamples;  // k slots per pixel (0 = off)
   uint selectFlags;    // kSelect*
   uint frameSeed;

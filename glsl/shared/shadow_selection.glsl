@@ -1,4 +1,4 @@
-// Streaming shadow-sample selection in the light pass (Lin & Yuksel 2019, Appendix A; DESIGN 5).
+// Streaming shadow-sample selection in the light pass (Lin & Yuksel 2019, Appendix A; docs/design.md §5).
 // Each pixel keeps a running importance total F and k slots. A fragment of importance f adds f to F
 // and then, independently for each slot, takes the slot with probability f / F. In any order this
 // leaves light i in a slot with probability f_i / sum f (a weighted reservoir of size 1 per slot).

@@ -1,5 +1,5 @@
 #pragma once
-// Interleaved sampling (Keller & Heidrich 2001; DESIGN 6) around the light pass:
+// Interleaved sampling (Keller & Heidrich 2001; docs/design.md §6) around the light pass:
 //   split:   GBuffer (position, normal)             -> Tiles (the same surfaces as n x n tiles)
 //   resolve: Tiles' irradiance (and fragment counts) -> full-resolution irradiance, the interleaving
 //            pattern removed by an edge-aware n x n filter

@@ -1,5 +1,5 @@
 #pragma once
-// Builds the lighting grid hierarchy on the GPU (Lin & Yuksel 2019, Sec. 3.1; DESIGN 2).
+// Builds the lighting grid hierarchy on the GPU (Lin & Yuksel 2019, Sec. 3.1; docs/design.md §2).
 //   in:  input lights S0 (GpuLight buffer), options
 //   out: GpuHierarchy: every level's grid lights merged into one buffer, with per-level offsets
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The LGH light pass (Lin & Yuksel 2019, Sec. 3.2; DESIGN 4): every grid light of every level drawn
+// The LGH light pass (Lin & Yuksel 2019, Sec. 3.2; docs/design.md §4): every grid light of every level drawn
 // as a light volume around the support of its blending function (d < 2R_l), the top level as a
 // full-screen triangle; each fragment adds B_l(d) x the light's irradiance at the pixel's surface into
 // an RGBA32F target with additive blending. Volumes are either the paper's cubes of half-size 2R_l
@@ -31,7 +31,7 @@ namespace lgh {
 // alpha, the start level, brute force and overdraw from `pass` (interleaving is the target's layout).
 struct LightPassOptions {
   LightPassSettings pass;
-  // Shadow-sample selection (DESIGN 5): k slots per pixel, filled in proportion to each light's
+  // Shadow-sample selection (docs/design.md §5): k slots per pixel, filled in proportion to each light's
   // contribution (or uniformly, for comparison); samples = 0: no selection.
   ShadowSettings shadows{0};
   float clampDistance = 0.0f;  // d_c, resolved

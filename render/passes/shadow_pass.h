@@ -1,5 +1,5 @@
 #pragma once
-// Indirect shadows (DESIGN 5-6), after the light pass has picked k lights per pixel:
+// Indirect shadows (docs/design.md §5-§6), after the light pass has picked k lights per pixel:
 //   ShadowRayPass:    GBuffer, ShadowSlots, lights -> raw visibility ratio (RGBA32F: r ratio, g rays)
 //   ShadowFilterPass: raw ratio, unshadowed irradiance, GBuffer -> filtered ratio (RGBA32F: r), by
 //                     an a-trous filter applied as a ratio estimator

@@ -90,7 +90,7 @@ TEST(Evaluate, FarFieldMatchesTheExactSum) {
   }
 }
 
-// DESIGN.md Sec. 7's yardstick: 10K omni lights in the unit cube, grey U[0.5, 2], clamp 0.01, 2,000
+// docs/design.md §7's yardstick: 10K omni lights in the unit cube, grey U[0.5, 2], clamp 0.01, 2,000
 // points in the cube, relRMS against the exact sum. The authors' cyLightingGrid blends S0 as its finest
 // level, as firstLevel = 0 does here, and measured (relRMS, lights per query):
 //   alpha 1: 0.046, 127    alpha 2: 0.0074, 703    alpha 4: 0.0011, 3,325.
@@ -184,7 +184,7 @@ TEST(Evaluate, AccuracyImprovesWithAlphaForOrientedLights) {
   }
 }
 
-// DESIGN.md Sec. 8: every extreme set, both builds, alpha from 0.25 to 16 and levels from 1 to the
+// docs/design.md §8: every extreme set, both builds, alpha from 0.25 to 16 and levels from 1 to the
 // maximum evaluate to finite, non-negative light; at alpha 16 with S0 finest every cluster is used at
 // 16 times its size or farther, so the hierarchy stays close to the exact sum.
 TEST(Evaluate, ExtremesStayFiniteAndConverge) {

@@ -1,7 +1,7 @@
 #pragma once
 
 // Light sets and small checks shared by the lgh test suites: the random sets of the accuracy
-// experiments and the extreme sets of DESIGN.md Sec. 8.
+// experiments and the extreme sets of docs/design.md §8.
 
 #include <cmath>
 #include <glm/geometric.hpp>
@@ -29,7 +29,7 @@ inline glm::dvec3 randomUnitVector(std::mt19937_64& rng) {
 }
 
 // N lights uniform in the cube [corner, corner + size]^3 with grey intensity U[0.5, 2] (the setup of
-// DESIGN.md Sec. 7's yardstick); oriented lights get a random unit normal.
+// docs/design.md §7's yardstick); oriented lights get a random unit normal.
 inline std::vector<Light> randomCube(size_t count, uint64_t seed, bool oriented, glm::dvec3 corner = glm::dvec3(0.0),
                                      double size = 1.0) {
   std::mt19937_64 rng(seed);
@@ -58,7 +58,7 @@ inline std::vector<Light> wideIntensities(size_t count, uint64_t seed) {
   return lights;
 }
 
-// DESIGN.md Sec. 8, as named light sets (zero lights included).
+// docs/design.md §8, as named light sets (zero lights included).
 inline std::vector<std::pair<std::string, std::vector<Light>>> extremeSets() {
   std::vector<std::pair<std::string, std::vector<Light>>> sets;
   sets.emplace_back("zero lights", std::vector<Light>{});

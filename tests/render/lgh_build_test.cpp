@@ -1,6 +1,6 @@
 // The GPU hierarchy build against the CPU library (lgh/, double precision) on the same lights:
 // the same grid lights per level, centres within 1e-4 h, intensities within 1e-4 relative, energy
-// kept per level, determinism, chunking, the automatic level count, and the extremes of DESIGN 8.
+// kept per level, determinism, chunking, the automatic level count, and the extremes of docs/design.md §8.
 #include <algorithm>
 #include <cstring>
 #include <map>

@@ -138,7 +138,7 @@ TEST_F(LightPassTest, MatchesCpuEvaluatorPixelByPixel) {
   }
 }
 
-// Relative RMSE of the LGH image against the exact sum for alpha = 0.5, 1, 2, 4 (DESIGN 7).
+// Relative RMSE of the LGH image against the exact sum for alpha = 0.5, 1, 2, 4 (docs/design.md §7).
 //  * Start level 0 (S0 blended as the finest level): the error must fall with every step of alpha and
 //    tends to zero (alpha -> infinity weights S0 alone). Measured at alpha = 2 on 160x90 with 20K-VPL
 //    budgets and the default clamp: Cornell 0.048, Sponza 0.068, emissive Cornell 0.045; pinned at
