@@ -47,10 +47,10 @@ constexpr BuildMethod kGather{"gather", "S1 + gather", true};
 
 // Timings of one GPU build method on one light set, and what its last build produced.
 struct GpuBuildResult {
-  std::vector<std::string> steps;                      // profiler scopes, in execution order
+  std::vector<std::string> steps;                     // profiler scopes, in execution order
   std::map<std::string, std::vector<double>> stepMs;  // one sample per timed run
-  std::vector<double> totalMs;                         // execute(), glFinish on both sides
-  std::vector<size_t> gridLightsPerLevel;              // [l] for l in 1..L; [0] unused
+  std::vector<double> totalMs;                        // execute(), glFinish on both sides
+  std::vector<size_t> gridLightsPerLevel;             // [l] for l in 1..L; [0] unused
   size_t gridLights = 0;
   int levels() const { return std::max(0, int(gridLightsPerLevel.size()) - 1); }
   double worstEnergyError = 0;  // max over levels and RGB of |sum I_level - sum I_S0| / sum I_S0
@@ -251,8 +251,9 @@ std::vector<std::string> stepsOf(const GpuBuildResult& a, const GpuBuildResult& 
 
 // "S3" -> 3, any other step -> 0.
 int levelOfStep(const std::string& step) {
-  return step.size() >= 2 && step[0] == 'S' && std::isdigit(static_cast<unsigned char>(step[1])) ? std::stoi(step.substr(1))
-                                                                                                  : 0;
+  return step.size() >= 2 && step[0] == 'S' && std::isdigit(static_cast<unsigned char>(step[1]))
+             ? std::stoi(step.substr(1))
+             : 0;
 }
 
 std::string stepCell(const GpuBuildResult& result, const std::string& step) {
@@ -273,8 +274,8 @@ void printTable1(const LightSetResult& set) {
   std::printf("\nTable 1: construction steps for %s lights (wall ms, glFinish-bracketed; median (min-max))\n",
               formatCount(set.lights).c_str());
   TextTable table({"step", std::string(kScatter.label) + " (" + runsLabel(set.scatter.totalMs.size()) + ")",
-                   std::string(kGather.label) + " (" + runsLabel(set.gather.totalMs.size()) + ")",
-                   "scatter/gather", "grid lights (scatter)", "grid lights (gather)"});
+                   std::string(kGather.label) + " (" + runsLabel(set.gather.totalMs.size()) + ")", "scatter/gather",
+                   "grid lights (scatter)", "grid lights (gather)"});
   for (const std::string& step : stepsOf(set.scatter, set.gather)) {
     const int level = levelOfStep(step);
     const auto scatter = set.scatter.stepMs.find(step), gather = set.gather.stepMs.find(step);
@@ -287,14 +288,15 @@ void printTable1(const LightSetResult& set) {
                 formatRatio(medianRatio(set.scatter.totalMs, set.gather.totalMs)), formatCount(set.scatter.gridLights),
                 formatCount(set.gather.gridLights)});
   table.print(stdout);
-  std::printf("  (steps are timed one by one, each between two glFinish calls; the total is one execute() call,\n"
-              "   so it includes the small host work between steps)\n");
+  std::printf(
+      "  (steps are timed one by one, each between two glFinish calls; the total is one execute() call,\n"
+      "   so it includes the small host work between steps)\n");
 }
 
 void printTable2(const std::vector<LightSetResult>& sets) {
   std::printf("\nTable 2: total construction time vs light count (wall ms; median (min-max))\n");
-  TextTable table({"lights", "levels", "grid lights", kScatter.label, kGather.label, "scatter/gather",
-                   "CPU S1 + gather (double)"});
+  TextTable table(
+      {"lights", "levels", "grid lights", kScatter.label, kGather.label, "scatter/gather", "CPU S1 + gather (double)"});
   for (const LightSetResult& set : sets) {
     table.addRow({formatCount(set.lights), std::to_string(set.gather.levels()), formatCount(set.gather.gridLights),
                   formatSpread(spreadOf(set.scatter.totalMs)), formatSpread(spreadOf(set.gather.totalMs)),
@@ -303,7 +305,8 @@ void printTable2(const std::vector<LightSetResult>& sets) {
   }
   table.print(stdout);
   if (std::any_of(sets.begin(), sets.end(), [](const LightSetResult& s) { return !s.cpu.skipped.empty(); }))
-    std::printf("  (a CPU build predicted, linearly from the largest set measured, to exceed --cpu-limit is skipped)\n");
+    std::printf(
+        "  (a CPU build predicted, linearly from the largest set measured, to exceed --cpu-limit is skipped)\n");
   if (sets.size() < 2) return;
   const LightSetResult &first = sets.front(), &last = sets.back();
   std::printf("  growth %s -> %s lights (x%s): %s %s, %s %s", shortCount(first.lights).c_str(),
@@ -316,15 +319,16 @@ void printTable2(const std::vector<LightSetResult>& sets) {
 }
 
 void printChunkTest(const ChunkTestResult& test) {
-  std::printf("\nChunk test: %s lights = %s MiB of GpuLight; largest storage block %s MiB", formatCount(test.lights).c_str(),
-              formatCount(test.lightBytes >> 20).c_str(), formatCount(test.maxBlockBytes >> 20).c_str());
+  std::printf("\nChunk test: %s lights = %s MiB of GpuLight; largest storage block %s MiB",
+              formatCount(test.lights).c_str(), formatCount(test.lightBytes >> 20).c_str(),
+              formatCount(test.maxBlockBytes >> 20).c_str());
   if (test.lightBytes > test.maxBlockBytes)
     std::printf(" -> the lights are bound in %zu chunks\n",
                 (test.lightBytes + test.maxBlockBytes - 1) / std::max<size_t>(test.maxBlockBytes, 1));
   else
     std::printf(" -> they fit one block on this device: chunking is not exercised\n");
-  std::printf("  %s: %s ms (%s), %d levels, %s grid lights, worst level energy error %.2g (level %d)\n",
-              kGather.label, formatSpread(spreadOf(test.gather.totalMs)).c_str(), runsLabel(test.gather.totalMs.size()).c_str(),
+  std::printf("  %s: %s ms (%s), %d levels, %s grid lights, worst level energy error %.2g (level %d)\n", kGather.label,
+              formatSpread(spreadOf(test.gather.totalMs)).c_str(), runsLabel(test.gather.totalMs.size()).c_str(),
               test.gather.levels(), formatCount(test.gather.gridLights).c_str(), test.gather.worstEnergyError,
               test.gather.worstEnergyLevel);
 }
@@ -370,8 +374,14 @@ nlohmann::json toJson(const std::vector<TimingRow>& rows, const std::vector<Ligh
   nlohmann::json timings = nlohmann::json::array();
   for (const TimingRow& row : rows) {
     const Spread s = spreadOf(row.samples);
-    timings.push_back({{"lights", row.lights}, {"method", row.method}, {"step", row.step}, {"median_ms", s.median},
-                       {"min_ms", s.min}, {"max_ms", s.max}, {"samples_ms", row.samples}, {"levels", row.levels},
+    timings.push_back({{"lights", row.lights},
+                       {"method", row.method},
+                       {"step", row.step},
+                       {"median_ms", s.median},
+                       {"min_ms", s.min},
+                       {"max_ms", s.max},
+                       {"samples_ms", row.samples},
+                       {"levels", row.levels},
                        {"grid_lights", row.gridLights ? nlohmann::json(*row.gridLights) : nlohmann::json()}});
   }
   nlohmann::json lightSets = nlohmann::json::array();
@@ -406,7 +416,8 @@ std::pair<LightSource, std::string> chooseLightSource(const BuildBenchOptions& o
   if (options.random) return {LightSource::inBox(), "the random box (--random)"};
   if (!options.scene.empty()) return {LightSource::onSurfaces(options.scene), "--scene " + options.scene};
   const std::filesystem::path scene = defaultBenchScene();
-  if (std::filesystem::exists(scene)) return {LightSource::onSurfaces(scene), "the default scene (" + scene.string() + ")"};
+  if (std::filesystem::exists(scene))
+    return {LightSource::onSurfaces(scene), "the default scene (" + scene.string() + ")"};
   return {LightSource::inBox(), "the random box: the default scene " + scene.string() + " is not there"};
 }
 
@@ -429,7 +440,8 @@ CLI::App* addBuildCommand(CLI::App& app, BuildBenchOptions& options) {
   command->add_option("--repeats", options.repeats, "timed builds per method and light count (after one warm-up)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  command->add_option("--budget", options.budgetSeconds, "seconds per method and light count: no new run starts after it")
+  command
+      ->add_option("--budget", options.budgetSeconds, "seconds per method and light count: no new run starts after it")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--cpu-limit", options.cpuLimitSeconds, "skip a CPU build predicted to take longer (seconds)")
@@ -499,7 +511,8 @@ int runBuildBench(const BuildBenchOptions& options) {
   if (chunkTest) printChunkTest(*chunkTest);
 
   std::vector<LightSetResult> allSets = sets;
-  if (table1Set && std::none_of(sets.begin(), sets.end(), [&](const LightSetResult& s) { return s.lights == table1Set->lights; }))
+  if (table1Set &&
+      std::none_of(sets.begin(), sets.end(), [&](const LightSetResult& s) { return s.lights == table1Set->lights; }))
     allSets.push_back(*table1Set);
   std::vector<std::string> failures;
   for (const LightSetResult& set : allSets) failures.insert(failures.end(), set.failures.begin(), set.failures.end());

@@ -4,11 +4,10 @@
 // vs light count), with the CPU builds (lgh/, double precision) as a reference column and
 // device-independent counts (levels, grid lights per level) beside every time.
 
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 namespace lgh::bench {
 
@@ -17,9 +16,9 @@ struct BuildBenchOptions {
   size_t table1Lights = 100000;  // measured too if not in lightCounts
   int levels = 0;                // 0: the automatic count for each light set
   int repeats = 5;
-  double budgetSeconds = 60;     // per method and light count: slow methods get fewer repeats
-  double cpuLimitSeconds = 30;   // skip a CPU build predicted to take longer than this
-  std::string scene;             // empty: the default scene if it exists, else the random box
+  double budgetSeconds = 60;    // per method and light count: slow methods get fewer repeats
+  double cpuLimitSeconds = 30;  // skip a CPU build predicted to take longer than this
+  std::string scene;            // empty: the default scene if it exists, else the random box
   bool random = false;
   std::string csvPath, jsonPath;
   bool chunkTest = false;

@@ -25,16 +25,20 @@ const std::string kCubeLightPass = "light pass (cubes)";  // not part of the fra
 }  // namespace
 
 CLI::App* addFrameCommand(CLI::App& app, FrameBenchOptions& options) {
-  CLI::App* command = app.add_subcommand("frame", "time a whole frame pass by pass for interleaving 1/2/4 (paper Table 3)");
+  CLI::App* command =
+      app.add_subcommand("frame", "time a whole frame pass by pass for interleaving 1/2/4 (paper Table 3)");
   options.render.settings.inputLights.bounces = 1;  // the bench's default (FrameBenchOptions)
   addRenderBenchOptions(*command, options.render, kFrameOwnSettings);
   command->add_option("--interleave", options.interleave, "interleaving factors, comma-separated")
       ->delimiter(',')
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
-  command->add_option("--repeats", options.repeats, "timed frames per setting")->check(CLI::PositiveNumber)->capture_default_str();
-  command->add_option("--compare-cubes", options.compareCubes,
-                      "also time the light pass with the paper's cube volumes (row 'light pass (cubes)')")
+  command->add_option("--repeats", options.repeats, "timed frames per setting")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--compare-cubes", options.compareCubes,
+                   "also time the light pass with the paper's cube volumes (row 'light pass (cubes)')")
       ->capture_default_str();
   command->add_option("--csv", options.csvPath, "also write the per-pass medians as CSV");
   return command;
@@ -62,7 +66,8 @@ FrameTimes measureFrames(RenderBench& bench, const RenderSettings& settings, con
     t.lights = counted.lights;
     s.lightPass.overdraw = false;
     for (int r = 0; r < options.repeats; ++r) {
-      s.inputLights.seed = settings.inputLights.seed + 1 + r;  // new VPLs every frame, as with moving lights: every pass runs
+      s.inputLights.seed =
+          settings.inputLights.seed + 1 + r;  // new VPLs every frame, as with moving lights: every pass runs
       const FrameStats stats = bench.renderer().render(s);
       t.nonFinite |= stats.nonFinitePixels > 0;
       for (const std::string& pass : kPasses) t.passMs[n][pass].push_back(stats.passMs(pass));
@@ -79,8 +84,7 @@ FrameTimes measureFrames(RenderBench& bench, const RenderSettings& settings, con
   return t;
 }
 
-void printFrames(RenderBench& bench, const RenderSettings& settings, const FrameBenchOptions& options,
-                 FrameTimes& t) {
+void printFrames(RenderBench& bench, const RenderSettings& settings, const FrameBenchOptions& options, FrameTimes& t) {
   const int width = settings.image.width, height = settings.image.height;
   const int bounces = settings.inputLights.bounces, k = settings.shadows.samples;
   std::printf("lgh-bench frame: %s (%s), %d x %d, %s\n", bench.scenePath().filename().string().c_str(),

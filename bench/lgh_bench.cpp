@@ -4,7 +4,6 @@
 //   lgh-bench frame [--vpls 100K --shadow-samples 4 --interleave 1,2,4 ...]        (paper Table 3)
 //   lgh-bench sweep [--preset readme|smoke --scene S@CAM --alpha ... --csv ...]      (docs/design.md §7: error vs time)
 #include <CLI/CLI.hpp>
-
 #include <functional>
 #include <iostream>
 #include <vector>
@@ -39,7 +38,8 @@ int run(int argc, char** argv) {
   };
 #ifdef LGH_HAVE_REFERENCE  // the sweep needs the Embree reference (bench/reference.h)
   lgh::bench::SweepOptions sweepOptions;
-  benchmarks.push_back({lgh::bench::addSweepCommand(app, sweepOptions), [&] { return lgh::bench::runSweepBench(sweepOptions); }});
+  benchmarks.push_back(
+      {lgh::bench::addSweepCommand(app, sweepOptions), [&] { return lgh::bench::runSweepBench(sweepOptions); }});
 #endif
 
   try {

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -46,9 +46,9 @@ struct InterleaveRow {
   int n = 1;
   std::vector<double> lightPassMs;  // split + light pass + resolve
   double rasterizedPerPixel = 0;
-  double meanRatio = 1;             // image mean / the 1x1 image mean
-  double errorVsNone = 0;           // relative RMSE against the 1x1 image
-  double errorVsExact = -1;         // against the exact unshadowed sum (-1: not measured)
+  double meanRatio = 1;      // image mean / the 1x1 image mean
+  double errorVsNone = 0;    // relative RMSE against the 1x1 image
+  double errorVsExact = -1;  // against the exact unshadowed sum (-1: not measured)
 };
 
 using RenderFrame = std::function<FrameStats(const RenderSettings&)>;
@@ -71,7 +71,7 @@ SweepRow measureVolumes(const RenderFrame& frame, RenderSettings s, int repeats)
     row.lightsPerLevel = counted.lights.lightsPerLevel;
   }
   row.budget = size_t(s.inputLights.vpls);
-  s.lightPass.overdraw = false;  // the counter's atomics would be timed too
+  s.lightPass.overdraw = false;       // the counter's atomics would be timed too
   for (int r = -1; r < repeats; ++r)  // r = -1: untimed, compiles the programs without the counter
     for (bool culling : {false, true}) {
       s.lightPass.volumeCulling = culling;
@@ -90,7 +90,8 @@ void measureBuildAndBruteForce(const RenderFrame& frame, RenderSettings s, int s
   }
   if (row.inputLights <= options.bruteForceLimit) {
     s.lightPass.bruteForce = true;
-    for (int r = 0; r < std::min(options.repeats, 2); ++r) row.bruteForceMs.push_back(frame(s).passMs(passes::kLightPass));
+    for (int r = 0; r < std::min(options.repeats, 2); ++r)
+      row.bruteForceMs.push_back(frame(s).passMs(passes::kLightPass));
   }
 }
 
@@ -121,13 +122,14 @@ void printSweep(const std::vector<SweepRow>& rows, const LightBenchOptions& opti
     }
     if (!a || a == b) continue;
     const double lights = double(b->inputLights) / double(std::max<size_t>(a->inputLights, 1));
-    std::printf("  growth %s -> %s VPLs (x%.0f), %dx%d: fragments/px x%.2f cube, x%.2f culled; light pass x%.2f cube, "
-                "x%.2f culled (paper: x2.4 from 1K to 1M)\n",
-                shortCount(a->target).c_str(), shortCount(b->target).c_str(), lights, n, n,
-                b->cubes.rasterizedPerPixel / std::max(a->cubes.rasterizedPerPixel, 1e-30),
-                b->culled.rasterizedPerPixel / std::max(a->culled.rasterizedPerPixel, 1e-30),
-                b->cubes.medianMs() / std::max(a->cubes.medianMs(), 1e-30),
-                b->culled.medianMs() / std::max(a->culled.medianMs(), 1e-30));
+    std::printf(
+        "  growth %s -> %s VPLs (x%.0f), %dx%d: fragments/px x%.2f cube, x%.2f culled; light pass x%.2f cube, "
+        "x%.2f culled (paper: x2.4 from 1K to 1M)\n",
+        shortCount(a->target).c_str(), shortCount(b->target).c_str(), lights, n, n,
+        b->cubes.rasterizedPerPixel / std::max(a->cubes.rasterizedPerPixel, 1e-30),
+        b->culled.rasterizedPerPixel / std::max(a->culled.rasterizedPerPixel, 1e-30),
+        b->cubes.medianMs() / std::max(a->cubes.medianMs(), 1e-30),
+        b->culled.medianMs() / std::max(a->culled.medianMs(), 1e-30));
   }
   std::printf("\nLGH build and brute force (1x1)\n");
   TextTable builds({"input lights", "LGH build ms", "brute force ms", "brute force / culled light pass"});
@@ -141,7 +143,8 @@ void printSweep(const std::vector<SweepRow>& rows, const LightBenchOptions& opti
     std::string brute = "-", ratio = "-";
     if (measured) {
       const bool estimate = r.bruteForceMs.empty();
-      const double perLight = spreadOf(measured->bruteForceMs).median / double(std::max<size_t>(measured->inputLights, 1));
+      const double perLight =
+          spreadOf(measured->bruteForceMs).median / double(std::max<size_t>(measured->inputLights, 1));
       const double bruteMs = estimate ? perLight * double(r.inputLights) : spreadOf(r.bruteForceMs).median;
       brute = estimate ? "~" + formatMs(bruteMs) + " (extrapolated)" : formatSpread(spreadOf(r.bruteForceMs));
       ratio = formatRatio(bruteMs / std::max(r.culled.medianMs(), 1e-30));
@@ -150,7 +153,6 @@ void printSweep(const std::vector<SweepRow>& rows, const LightBenchOptions& opti
   }
   builds.print(stdout);
 }
-
 
 // Interleaving 1x1 / 2x2 / 4x4 at one VPL count: time, fragments, and the image's mean and error
 // against 1x1 (and the exact sum). Sets `failed` when interleaving changes the mean by more than 1%.
@@ -235,8 +237,8 @@ void writeCsv(std::ostream& csv, const std::vector<SweepRow>& rows, const std::v
     const Spread t = spreadOf(r.lightPassMs);
     csv << "interleave," << interleaveInputLights << "," << options.interleaveVpls << ",," << r.n << ","
         << (culled ? "culled" : "cube") << "," << r.rasterizedPerPixel << ",,," << t.median << "," << t.min << ","
-        << t.max << ",,," << r.errorVsNone << "," << (r.errorVsExact < 0 ? std::string() : std::to_string(r.errorVsExact))
-        << "\n";
+        << t.max << ",,," << r.errorVsNone << ","
+        << (r.errorVsExact < 0 ? std::string() : std::to_string(r.errorVsExact)) << "\n";
   }
 }
 
@@ -251,19 +253,30 @@ void writeJson(std::ostream& out, RenderBench& bench, const std::vector<SweepRow
   j["alpha"] = settings.lightPass.alpha;
   j["start_level"] = settings.lightPass.startLevel;
   auto volumes = [](const VolumePath& p) {
-    return nlohmann::json{{"fragments_per_pixel", p.rasterizedPerPixel}, {"max_fragments", p.maxRasterized},
-                          {"shaded_per_pixel", p.shadedPerPixel}, {"efficiency", p.efficiency()},
+    return nlohmann::json{{"fragments_per_pixel", p.rasterizedPerPixel},
+                          {"max_fragments", p.maxRasterized},
+                          {"shaded_per_pixel", p.shadedPerPixel},
+                          {"efficiency", p.efficiency()},
                           {"light_pass_ms", p.lightPassMs}};
   };
   for (const SweepRow& r : rows)
-    j["vpls"].push_back({{"input_lights", r.inputLights}, {"vpl_budget", r.budget}, {"levels", r.levels},
-                         {"interleave", r.tiles}, {"lights_per_level", r.lightsPerLevel}, {"cube", volumes(r.cubes)},
-                         {"culled", volumes(r.culled)}, {"speed_up", r.speedUp()}, {"build_ms", r.buildMs},
+    j["vpls"].push_back({{"input_lights", r.inputLights},
+                         {"vpl_budget", r.budget},
+                         {"levels", r.levels},
+                         {"interleave", r.tiles},
+                         {"lights_per_level", r.lightsPerLevel},
+                         {"cube", volumes(r.cubes)},
+                         {"culled", volumes(r.culled)},
+                         {"speed_up", r.speedUp()},
+                         {"build_ms", r.buildMs},
                          {"brute_force_ms", r.bruteForceMs}});
   for (const InterleaveRow& r : interleaved)
-    j["interleave"].push_back({{"n", r.n}, {"fragments_per_pixel", r.rasterizedPerPixel},
-                               {"light_pass_ms", r.lightPassMs}, {"mean_ratio", r.meanRatio},
-                               {"error_vs_1x1", r.errorVsNone}, {"error_vs_exact", r.errorVsExact}});
+    j["interleave"].push_back({{"n", r.n},
+                               {"fragments_per_pixel", r.rasterizedPerPixel},
+                               {"light_pass_ms", r.lightPassMs},
+                               {"mean_ratio", r.meanRatio},
+                               {"error_vs_1x1", r.errorVsNone},
+                               {"error_vs_exact", r.errorVsExact}});
   out << j.dump(2) << "\n";
 }
 
@@ -291,8 +304,11 @@ CLI::App* addLightCommand(CLI::App& app, LightBenchOptions& options) {
       ->delimiter(',')
       ->check(CLI::Range(1, int(gpu::kMaxInterleave)))
       ->capture_default_str();
-  command->add_option("--repeats", options.repeats, "timed frames per point")->check(CLI::PositiveNumber)->capture_default_str();
-  command->add_option("--brute-force-limit", options.bruteForceLimit, "time the brute-force pass up to this many lights")
+  command->add_option("--repeats", options.repeats, "timed frames per point")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--brute-force-limit", options.bruteForceLimit, "time the brute-force pass up to this many lights")
       ->transform(CLI::AsNumberWithUnit(thousands))
       ->capture_default_str();
   command->add_option("--interleave-vpls", options.interleaveVpls, "VPL count of the interleaving table (0: skip it)")

@@ -21,11 +21,11 @@ struct LightBenchOptions {
   // by addLightCommand): a 320 x 180 image, one bounce.
   RenderBenchOptions render;
   std::vector<size_t> vplCounts{1000, 10000, 100000, 1000000};
-  std::vector<int> tiles{1, 4};     // interleaving factors of the VPL-count sweep
+  std::vector<int> tiles{1, 4};  // interleaving factors of the VPL-count sweep
   int repeats = 3;
-  size_t bruteForceLimit = 20000;   // brute-force light pass timed up to this many input lights
-  size_t interleaveVpls = 100000;   // 0: skip the interleaving table
-  bool exactError = true;           // interleaving table: relative RMSE against the exact sum too
+  size_t bruteForceLimit = 20000;  // brute-force light pass timed up to this many input lights
+  size_t interleaveVpls = 100000;  // 0: skip the interleaving table
+  bool exactError = true;          // interleaving table: relative RMSE against the exact sum too
   std::string csvPath, jsonPath;
 };
 

@@ -11,7 +11,7 @@
 namespace lgh::bench {
 namespace {
 
-constexpr float kBoxSize = 10.0f;          // metres, about Sponza's height
+constexpr float kBoxSize = 10.0f;           // metres, about Sponza's height
 constexpr float kTotalIntensity = 1000.0f;  // W/sr per channel over a whole set
 
 }  // namespace
@@ -64,7 +64,8 @@ double LightSource::eMin() const {
 }
 
 std::string LightSource::description() const {
-  if (!scene_) return "uniform random lights in a " + std::to_string(int(kBoxSize)) + " m cube, random orientations (--random)";
+  if (!scene_)
+    return "uniform random lights in a " + std::to_string(int(kBoxSize)) + " m cube, random orientations (--random)";
   return "VPL-like: area-uniform points on the surfaces of " + scene_->source.string() + " (" +
          formatCount(scene_->triangleCount()) + " triangles), oriented with the surface";
 }

@@ -16,7 +16,10 @@ class ProgressBar {
  public:
   // total: units of work (pixels, points, ...); enabled = false prints nothing.
   ProgressBar(std::string label, double total, bool enabled = true)
-      : label_(std::move(label)), total_(std::max(total, 1e-300)), enabled_(enabled), tty_(isatty(STDERR_FILENO) != 0),
+      : label_(std::move(label)),
+        total_(std::max(total, 1e-300)),
+        enabled_(enabled),
+        tty_(isatty(STDERR_FILENO) != 0),
         start_(std::chrono::steady_clock::now()) {
     if (enabled_ && !tty_) std::fprintf(stderr, "  %s: started\n", label_.c_str());
   }

@@ -27,8 +27,8 @@ unsigned workerCount(unsigned requested) {
 void throwOnEmbreeError(RTCDevice device, const char* what) {
   const RTCError error = rtcGetDeviceError(device);
   if (error == RTC_ERROR_NONE) return;
-  static const char* const names[] = {"none", "unknown", "invalid argument", "invalid operation", "out of memory",
-                                      "unsupported CPU", "cancelled"};
+  static const char* const names[] = {"none",          "unknown",         "invalid argument", "invalid operation",
+                                      "out of memory", "unsupported CPU", "cancelled"};
   const char* name = unsigned(error) < sizeof names / sizeof names[0] ? names[error] : "unknown";
   throw std::runtime_error(std::string("Embree: ") + what + " failed: " + name);
 }
@@ -96,7 +96,9 @@ OcclusionScene::OcclusionScene(const std::vector<glm::vec3>& positions, const st
   for (std::uint32_t i : indices)
     if (i >= positions.size()) throw std::invalid_argument("OcclusionScene: index out of range");
   device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("Embree: rtcNewDevice failed (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+  if (!device_)
+    throw std::runtime_error("Embree: rtcNewDevice failed (error " + std::to_string(int(rtcGetDeviceError(nullptr))) +
+                             ")");
   scene_ = rtcNewScene(device_);
   // Robust (watertight) traversal: a ray through a shared edge cannot slip between two triangles.
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
@@ -104,7 +106,7 @@ OcclusionScene::OcclusionScene(const std::vector<glm::vec3>& positions, const st
   if (!indices.empty()) {
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                  3 * sizeof(float), positions.size()));
+                                                                 3 * sizeof(float), positions.size()));
     auto* triangles = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
         geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), indices.size() / 3));
     throwOnEmbreeError(device_, "allocating geometry buffers");
@@ -171,7 +173,8 @@ std::vector<std::uint32_t> choosePixels(int width, int height, double fraction, 
   return pixels;
 }
 
-ReferenceImage computeReference(const OcclusionScene& scene, const ReferenceInput& input, const ReferenceOptions& options) {
+ReferenceImage computeReference(const OcclusionScene& scene, const ReferenceInput& input,
+                                const ReferenceOptions& options) {
   const size_t pixelCount = size_t(std::max(input.width, 0)) * size_t(std::max(input.height, 0));
   if (input.width <= 0 || input.height <= 0) throw std::invalid_argument("reference: empty image");
   if (input.position.size() != pixelCount || input.normal.size() != pixelCount)
@@ -193,8 +196,8 @@ ReferenceImage computeReference(const OcclusionScene& scene, const ReferenceInpu
   std::atomic<std::uint64_t> rays{0}, pairs{0};
   const auto start = std::chrono::steady_clock::now();
   bench::ProgressBar bar(options.label + " (" + std::to_string(out.pixels.size()) + " pixels x " +
-                      std::to_string(lights.size()) + " lights, " + std::to_string(out.threads) + " threads)",
-                  double(out.pixels.size()), options.progress);
+                             std::to_string(lights.size()) + " lights, " + std::to_string(out.threads) + " threads)",
+                         double(out.pixels.size()), options.progress);
 
   auto pixelWork = [&](size_t k) {
     const std::uint32_t index = out.pixels[k];
@@ -270,7 +273,7 @@ std::uint64_t hashBytes(const void* data, std::size_t size, std::uint64_t seed) 
 std::uint64_t hashLights(const std::vector<Light>& lights) {
   std::uint64_t sum = 0;
   for (const Light& l : lights) {
-    const float values[9] = {l.position.x, l.position.y, l.position.z, l.intensity.x, l.intensity.y,
+    const float values[9] = {l.position.x,  l.position.y, l.position.z, l.intensity.x, l.intensity.y,
                              l.intensity.z, l.normal.x,   l.normal.y,   l.normal.z};
     sum += mix64(hashBytes(values, sizeof values));
   }

@@ -19,11 +19,10 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "lgh/light.h"
 
@@ -73,11 +72,11 @@ struct ReferenceInput {
 };
 
 struct ReferenceOptions {
-  bool shadowed = true;       // also the shadowed sum (one ray per pixel and lit light)
-  double pixelFraction = 1;   // < 1: each pixel computed with this probability (a random subset)
+  bool shadowed = true;      // also the shadowed sum (one ray per pixel and lit light)
+  double pixelFraction = 1;  // < 1: each pixel computed with this probability (a random subset)
   std::uint32_t subsetSeed = 1;
-  unsigned threads = 0;       // 0: one per hardware thread
-  bool progress = true;       // progress bar with the time left, on stderr
+  unsigned threads = 0;  // 0: one per hardware thread
+  bool progress = true;  // progress bar with the time left, on stderr
   std::string label = "reference";
 };
 
@@ -88,9 +87,9 @@ struct ReferenceImage {
   std::vector<glm::dvec3> unshadowed;  // exact sum over every light, per computed pixel
   std::vector<glm::dvec3> shadowed;    // the same with each light's visibility (empty if not computed)
   // How it was made (kept through the cache):
-  double seconds = 0;                  // wall time of the computation
-  std::uint64_t pairs = 0;             // pixel-light pairs evaluated
-  std::uint64_t rays = 0;              // shadow rays traced
+  double seconds = 0;       // wall time of the computation
+  std::uint64_t pairs = 0;  // pixel-light pairs evaluated
+  std::uint64_t rays = 0;   // shadow rays traced
   unsigned threads = 0;
   std::size_t lightCount = 0;
   bool full() const { return pixels.size() == size_t(width) * size_t(height); }
@@ -101,7 +100,8 @@ struct ReferenceImage {
 std::vector<std::uint32_t> choosePixels(int width, int height, double fraction, std::uint32_t seed);
 
 // Throws std::invalid_argument on inconsistent input (sizes, a non-positive clamp distance is allowed).
-ReferenceImage computeReference(const OcclusionScene& scene, const ReferenceInput& input, const ReferenceOptions& options);
+ReferenceImage computeReference(const OcclusionScene& scene, const ReferenceInput& input,
+                                const ReferenceOptions& options);
 
 // --- Cache. A reference is stored under a description of everything it depends on (the caller writes
 // it: scene path and modification time, camera, resolution, light settings and seed, clamp, pixel

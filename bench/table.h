@@ -21,10 +21,10 @@ class TextTable {
   std::vector<std::vector<std::string>> rows_;  // rows_[0]: the headers
 };
 
-std::string formatCount(size_t n);                // 1,000,000
-std::string formatMs(double ms);                  // 3 significant digits down to 0.01: 0.42, 12.1, 2,110
-std::string formatSpread(const Spread& s);        // "12.1 (11.9-13.0)"; "12.1" when min == max
-std::string formatRatio(double ratio);            // "174x", "4.6x", "0.98x"
-std::string shortCount(size_t n);                 // 1K, 100K, 1M, 4.5M: for labels
+std::string formatCount(size_t n);          // 1,000,000
+std::string formatMs(double ms);            // 3 significant digits down to 0.01: 0.42, 12.1, 2,110
+std::string formatSpread(const Spread& s);  // "12.1 (11.9-13.0)"; "12.1" when min == max
+std::string formatRatio(double ratio);      // "174x", "4.6x", "0.98x"
+std::string shortCount(size_t n);           // 1K, 100K, 1M, 4.5M: for labels
 
 }  // namespace lgh::bench

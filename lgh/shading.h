@@ -20,11 +20,10 @@ namespace lgh {
 //   pi |m| + pi (1 - |m| - o) + 4 pi o = pi (1 + 3o)
 // for every |m|: the lobe conserves the cluster's flux however its normals are spread. (Our first
 // design wrote (1 - |m|)/2 for the constant; that would double the flux of a cluster whose normals
-// cancel, |m| = 0, which emits pi I but would get 2 pi I: docs/design.md §11.) The directional part keeps the cluster's net
-// orientation; the rest, which the normals cancelled, is spread evenly.
-// Special cases: one VPL (|m| = 1, o = 0) gives max(0, n·u) exactly; omni lights (m = 0, o = 1) give 1.
-// Since |m| <= 1 - o for any cluster (hierarchy.h), the constant part is >= 0; the clamp guards
-// rounding and out-of-range input only.
+// cancel, |m| = 0, which emits pi I but would get 2 pi I: docs/design.md §11.) The directional part keeps the cluster's
+// net orientation; the rest, which the normals cancelled, is spread evenly. Special cases: one VPL (|m| = 1, o = 0)
+// gives max(0, n·u) exactly; omni lights (m = 0, o = 1) give 1. Since |m| <= 1 - o for any cluster (hierarchy.h), the
+// constant part is >= 0; the clamp guards rounding and out-of-range input only.
 double emissionLobe(const glm::dvec3& meanNormal, double omniFraction, const glm::dvec3& u);
 
 // Unshadowed contribution of one light at point x with unit normal *nx:

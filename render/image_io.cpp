@@ -35,7 +35,8 @@ void writePixels(const std::filesystem::path& path, int width, int height, OIIO:
   }
   std::error_code ec;
   std::filesystem::rename(temporary, path, ec);
-  if (ec) throw std::runtime_error(path.string() + ": could not move the finished image into place (" + ec.message() + ")");
+  if (ec)
+    throw std::runtime_error(path.string() + ": could not move the finished image into place (" + ec.message() + ")");
 }
 
 }  // namespace
@@ -60,7 +61,8 @@ bool isHdrFormat(const std::filesystem::path& path) {
   return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
 }
 
-static_assert(std::uint32_t(ToneMap::Clamp) == gpu::kToneMapClamp && std::uint32_t(ToneMap::Reinhard) == gpu::kToneMapReinhard &&
+static_assert(std::uint32_t(ToneMap::Clamp) == gpu::kToneMapClamp &&
+                  std::uint32_t(ToneMap::Reinhard) == gpu::kToneMapReinhard &&
                   std::uint32_t(ToneMap::Aces) == gpu::kToneMapAces,
               "ToneMap must list the curves in the order of shared/display_encode.h");
 

@@ -16,9 +16,11 @@ struct AovName {
   Aov aov;
   const char* name;
 };
-constexpr AovName kAovNames[] = {{Aov::Final, "final"},         {Aov::Direct, "direct"},     {Aov::Indirect, "indirect"},
-                                 {Aov::Irradiance, "irradiance"}, {Aov::Ratio, "ratio"}, {Aov::Visibility, "visibility"}, {Aov::Overdraw, "overdraw"}, {Aov::Emission, "emission"},
-                                 {Aov::Albedo, "albedo"},       {Aov::Normal, "normal"},     {Aov::Position, "position"}};
+constexpr AovName kAovNames[] = {
+    {Aov::Final, "final"},           {Aov::Direct, "direct"},     {Aov::Indirect, "indirect"},
+    {Aov::Irradiance, "irradiance"}, {Aov::Ratio, "ratio"},       {Aov::Visibility, "visibility"},
+    {Aov::Overdraw, "overdraw"},     {Aov::Emission, "emission"}, {Aov::Albedo, "albedo"},
+    {Aov::Normal, "normal"},         {Aov::Position, "position"}};
 
 // Default clamp distance d_c as a fraction of the scene's diagonal. 1e-3 left bright specks along
 // creases (VPLs and S1 centres a millimetre from the next wall in the Cornell box); 1e-2 removes
@@ -42,7 +44,8 @@ std::vector<std::string> aovNames() {
 }
 
 bool isDataAov(Aov aov) {
-  return aov == Aov::Overdraw || aov == Aov::Ratio || aov == Aov::Visibility || aov == Aov::Albedo || aov == Aov::Normal || aov == Aov::Position;
+  return aov == Aov::Overdraw || aov == Aov::Ratio || aov == Aov::Visibility || aov == Aov::Albedo ||
+         aov == Aov::Normal || aov == Aov::Position;
 }
 
 double FrameStats::totalMs() const {
@@ -153,9 +156,8 @@ FrameStats Renderer::render(const CameraView& view) {
   // Surfaces seen by the camera: position, normal, albedo, emission.
   timed(passes::kGBuffer, [&] { gbufferPass_.execute(scene_, gbuffer_); });
   // Punctual lights, one shadow ray each (except point lights that go through the LGH).
-  timed(passes::kDirectLight, [&] {
-    directPass_.execute(scene_, gbuffer_, settings_.directShadows, pointLightsThroughLgh(), direct_);
-  });
+  timed(passes::kDirectLight,
+        [&] { directPass_.execute(scene_, gbuffer_, settings_.directShadows, pointLightsThroughLgh(), direct_); });
   if (settings_.indirect) {
     // S0 (VPLs, emitter samples, many point lights) and its hierarchy, when out of date.
     stats.lightsRebuilt = updateLights();
@@ -165,17 +167,32 @@ FrameStats Renderer::render(const CameraView& view) {
     // n x n interleaving: the surfaces as n^2 tiles, each shaded by 1/n^2 of the lights.
     if (interleaved()) timed(passes::kInterleaveSplit, [&] { interleavePass_.split(gbuffer_, tiles_); });
     // Light volumes: irradiance through the LGH, and k lights per pixel picked for shadow rays.
-    timed(passes::kLightPass, [&] { draws = lightPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, options, target); });
+    timed(passes::kLightPass,
+          [&] { draws = lightPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, options, target); });
     // The tiles' irradiance back at full resolution, edge-aware.
-    if (interleaved()) timed(passes::kInterleaveResolve, [&] { interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, options.pass.overdraw, irradiance_, fragmentCounts_); });
+    if (interleaved())
+      timed(passes::kInterleaveResolve, [&] {
+        interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, options.pass.overdraw, irradiance_,
+                                fragmentCounts_);
+      });
     // Shadow rays to the picked lights: the raw visibility ratio.
-    if (shadowed()) timed(passes::kShadowRays, [&] { shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, target.layout, inputLights_.lights, hierarchy_, options, rawRatio_); });
+    if (shadowed())
+      timed(passes::kShadowRays, [&] {
+        shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, target.layout, inputLights_.lights, hierarchy_, options,
+                               rawRatio_);
+      });
     // A-trous filter over the ratio, as a ratio estimator with the unshadowed irradiance.
-    if (shadowed()) timed(passes::kShadowFilter, [&] { shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, visibility_); });
+    if (shadowed())
+      timed(passes::kShadowFilter,
+            [&] { shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, visibility_); });
     stats.lights = lightStats(draws);
   }
   // Emission + direct + albedo / pi x irradiance x visibility; non-finite pixels written black, counted.
-  timed(passes::kComposite, [&] { stats.nonFinitePixels = compositePass_.execute(gbuffer_, direct_, settings_.indirect ? &irradiance_ : nullptr, settings_.indirect && shadowed() ? &visibility_ : nullptr, indirect_, final_); });
+  timed(passes::kComposite, [&] {
+    stats.nonFinitePixels =
+        compositePass_.execute(gbuffer_, direct_, settings_.indirect ? &irradiance_ : nullptr,
+                               settings_.indirect && shadowed() ? &visibility_ : nullptr, indirect_, final_);
+  });
   stats.passes = profiler_.collect();
   if (settings_.indirect && settings_.lightPass.overdraw) measureOverdraw(stats.lights);
   ++frameIndex_;
@@ -193,7 +210,8 @@ bool Renderer::updateLights() {
     builds_.builtInputLights(key);
   }
   if (plan.hierarchy) {
-    timed(passes::kLghBuild, [&] { buildPass_.execute(inputLights_.lights, inputLights_.count, hierarchyOptions, hierarchy_); });
+    timed(passes::kLghBuild,
+          [&] { buildPass_.execute(inputLights_.lights, inputLights_.count, hierarchyOptions, hierarchy_); });
     builds_.builtHierarchy(hierarchyOptions.levels);
   }
   return plan.inputLights || plan.hierarchy;
@@ -228,17 +246,28 @@ void Renderer::measureOverdraw(LightStats& stats) const {
 
 const gl::Texture2D& Renderer::texture(Aov aov) const {
   switch (aov) {
-    case Aov::Final: return final_;
-    case Aov::Direct: return direct_;
-    case Aov::Indirect: return indirect_;
-    case Aov::Irradiance: return irradiance_;
-    case Aov::Ratio: return rawRatio_;
-    case Aov::Visibility: return visibility_;
-    case Aov::Overdraw: return fragmentCounts_;
-    case Aov::Emission: return gbuffer_.emission;
-    case Aov::Albedo: return gbuffer_.albedo;
-    case Aov::Normal: return gbuffer_.normal;
-    case Aov::Position: return gbuffer_.position;
+    case Aov::Final:
+      return final_;
+    case Aov::Direct:
+      return direct_;
+    case Aov::Indirect:
+      return indirect_;
+    case Aov::Irradiance:
+      return irradiance_;
+    case Aov::Ratio:
+      return rawRatio_;
+    case Aov::Visibility:
+      return visibility_;
+    case Aov::Overdraw:
+      return fragmentCounts_;
+    case Aov::Emission:
+      return gbuffer_.emission;
+    case Aov::Albedo:
+      return gbuffer_.albedo;
+    case Aov::Normal:
+      return gbuffer_.normal;
+    case Aov::Position:
+      return gbuffer_.position;
   }
   return final_;
 }
@@ -249,7 +278,8 @@ ImageRGBA Renderer::readImage(Aov aov) const {
     const std::vector<GLuint> counts = fragmentCounts_.readUint();
     const GLuint largest = std::max<GLuint>(1, *std::max_element(counts.begin(), counts.end()));
     std::vector<glm::vec4> colors(counts.size());
-    for (size_t i = 0; i < counts.size(); ++i) colors[i] = glm::vec4(gpu::heatColor(float(counts[i]) / float(largest)), 1.0f);
+    for (size_t i = 0; i < counts.size(); ++i)
+      colors[i] = glm::vec4(gpu::heatColor(float(counts[i]) / float(largest)), 1.0f);
     return fromGLRows(fragmentCounts_.width(), fragmentCounts_.height(), colors);
   }
   const gl::Texture2D& t = texture(aov);

@@ -10,15 +10,15 @@
 #include "render/gl/buffer.h"
 #include "render/gl/profiler.h"
 #include "render/image_io.h"
+#include "render/light_builds.h"
 #include "render/passes/composite_pass.h"
 #include "render/passes/direct_light_pass.h"
 #include "render/passes/gbuffer_pass.h"
 #include "render/passes/input_lights_pass.h"
 #include "render/passes/interleave_pass.h"
 #include "render/passes/lgh_build_pass.h"
-#include "render/passes/shadow_pass.h"
 #include "render/passes/light_volume_pass.h"
-#include "render/light_builds.h"
+#include "render/passes/shadow_pass.h"
 #include "render/settings.h"
 
 namespace lgh {
@@ -52,8 +52,8 @@ bool isDataAov(Aov aov);
 // What the LGH part of the frame drew, in device-independent counts.
 struct LightStats {
   size_t inputLights = 0, pointLights = 0, emitterSamples = 0, vpls = 0;  // S0 and its parts
-  int levels = 0;                       // L of the hierarchy in use
-  std::vector<size_t> lightsPerLevel;   // lights drawn by the light pass: [0] S0, [l] level l
+  int levels = 0;                                                         // L of the hierarchy in use
+  std::vector<size_t> lightsPerLevel;  // lights drawn by the light pass: [0] S0, [l] level l
   // Per pixel of the image, only with settings.overdraw: fragments rasterized (the paper's Fig. 5
   // overdraw), fragments that shaded (non-zero blending weight), and the largest rasterized count.
   double rasterizedPerPixel = 0, shadedPerPixel = 0;
@@ -85,7 +85,7 @@ class Renderer {
   ImageRGBA readImage(Aov aov) const;
   const GBuffer& gbuffer() const { return gbuffer_; }
   const gl::Texture2D& texture(Aov aov) const;
-  float clampDistance() const;  // d_c in use (resolves the automatic default)
+  float clampDistance() const;           // d_c in use (resolves the automatic default)
   LghBuildOptions buildOptions() const;  // how the hierarchy is built (levels, smallest top cell)
   // The input lights and hierarchy in use (built by the first render()).
   const InputLights& inputLights() const { return inputLights_; }
@@ -138,13 +138,13 @@ class Renderer {
   // Targets the passes hand to each other.
   GBuffer gbuffer_;
   gl::Texture2D direct_;
-  Tiles tiles_;                  // interleaved surfaces and light-pass targets (n > 1)
-  gl::Texture2D irradiance_;     // LGH irradiance, full resolution
-  gl::Texture2D fragmentCounts_; // R32UI, light-pass fragments per pixel (settings.overdraw)
-  ShadowSlots shadowSlots_;      // k selected lights per light-pass pixel
-  gl::Texture2D rawRatio_;       // r: visibility ratio from the shadow rays
-  gl::Texture2D visibility_;     // r: filtered ratio
-  gl::Texture2D indirect_;       // albedo / pi x irradiance, unshadowed
+  Tiles tiles_;                   // interleaved surfaces and light-pass targets (n > 1)
+  gl::Texture2D irradiance_;      // LGH irradiance, full resolution
+  gl::Texture2D fragmentCounts_;  // R32UI, light-pass fragments per pixel (settings.overdraw)
+  ShadowSlots shadowSlots_;       // k selected lights per light-pass pixel
+  gl::Texture2D rawRatio_;        // r: visibility ratio from the shadow rays
+  gl::Texture2D visibility_;      // r: filtered ratio
+  gl::Texture2D indirect_;        // albedo / pi x irradiance, unshadowed
   gl::Texture2D final_;
 };
 

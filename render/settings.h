@@ -23,7 +23,7 @@ struct ImageSettings {
 
 // Input lights S0 (InputLightsPass); rebuilt only when one of these changes.
 struct InputLightSettings {
-  int vpls = 100000;           // VPL budget: ceil(vpls / bounces) light paths, up to `bounces` VPLs each
+  int vpls = 100000;  // VPL budget: ceil(vpls / bounces) light paths, up to `bounces` VPLs each
   int bounces = 2;
   int emitterSamples = 16384;  // points on emissive triangles, fed to the LGH as direct lights
   int maxDirectLights = 16;    // more punctual lights than this: point lights go to the LGH as S0
@@ -42,20 +42,20 @@ struct HierarchySettings {
 
 // The light pass (LightVolumePass) and its interleaving (InterleavePass).
 struct LightPassSettings {
-  float alpha = 1.0f;       // R_l = alpha h_l
-  int startLevel = 1;       // finest level blended: 1 (S1) or 0 (S0)
-  int interleave = 1;       // n x n interleaved sampling
-  bool overdraw = false;    // count fragments per pixel (AOV "overdraw")
-  bool bruteForce = false;  // every S0 light at every pixel, weight 1 (exact unshadowed)
+  float alpha = 1.0f;         // R_l = alpha h_l
+  int startLevel = 1;         // finest level blended: 1 (S1) or 0 (S0)
+  int interleave = 1;         // n x n interleaved sampling
+  bool overdraw = false;      // count fragments per pixel (AOV "overdraw")
+  bool bruteForce = false;    // every S0 light at every pixel, weight 1 (exact unshadowed)
   bool volumeCulling = true;  // sphere-bounding rectangles depth-tested against the surfaces; false: the paper's cubes
 };
 
 // Indirect shadows: the light pass's selection of k lights per pixel and the shadow rays to them.
 struct ShadowSettings {
-  int samples = 4;          // k shadow rays per pixel; 0: indirect light unshadowed
-  bool skipFinest = true;   // the finest level blended (S1, or S0 from start level 0) is not picked
-  bool uniform = false;     // pick lights uniformly instead of by contribution (for comparison)
-  float spread = 1.0f;      // jitter of a cluster's shadow-ray target, in its standard deviations
+  int samples = 4;         // k shadow rays per pixel; 0: indirect light unshadowed
+  bool skipFinest = true;  // the finest level blended (S1, or S0 from start level 0) is not picked
+  bool uniform = false;    // pick lights uniformly instead of by contribution (for comparison)
+  float spread = 1.0f;     // jitter of a cluster's shadow-ray target, in its standard deviations
 };
 
 // The a-trous filter over the shadow ratio (ShadowFilterPass).
@@ -90,35 +90,61 @@ void visitSettings(Settings& s, Visitor&& visit) {
   auto& image = s.image;
   visit(image.width, SettingInfo{"width", "image width in pixels", 1, 16384});
   visit(image.height, SettingInfo{"height", "image height in pixels", 1, 16384});
-  visit(image.camera, SettingInfo{"camera", "scene camera by name (default: the scene's first camera, else one framing the scene's bounds)"});
+  visit(image.camera,
+        SettingInfo{"camera",
+                    "scene camera by name (default: the scene's first camera, else one framing the scene's bounds)"});
   visit(image.exposure, SettingInfo{"exposure", "exposure in EV for PNG/JPEG output", -20, 20});
   visit(image.toneMap, SettingInfo{"tonemap", "tone curve for PNG/JPEG output: clamp, reinhard, aces"});
   visit(s.directShadows, SettingInfo{"direct-shadows", "trace shadow rays for direct light"});
-  visit(s.clampDistance, SettingInfo{"clamp-distance", "d_c: distances below it count as d_c in 1/d^2 (0 = 1e-2 x scene diagonal)", 0, 1e9});
-  visit(s.indirect, SettingInfo{"indirect", "light through the LGH (VPLs, emissive surfaces, many point lights); false: direct light only"});
+  visit(s.clampDistance,
+        SettingInfo{"clamp-distance", "d_c: distances below it count as d_c in 1/d^2 (0 = 1e-2 x scene diagonal)", 0,
+                    1e9});
+  visit(s.indirect,
+        SettingInfo{"indirect",
+                    "light through the LGH (VPLs, emissive surfaces, many point lights); false: direct light only"});
   auto& lights = s.inputLights;
-  visit(lights.vpls, SettingInfo{"vpls", "VPL budget: ceil(vpls / bounces) light paths of up to `bounces` VPLs", 0, 16000000});
+  visit(lights.vpls,
+        SettingInfo{"vpls", "VPL budget: ceil(vpls / bounces) light paths of up to `bounces` VPLs", 0, 16000000});
   visit(lights.bounces, SettingInfo{"bounces", "diffuse bounces per light path (a VPL at each)", 1, 3});
-  visit(lights.emitterSamples, SettingInfo{"emitter-samples", "points on emissive triangles fed to the LGH as direct lights", 0, 16000000});
-  visit(lights.maxDirectLights, SettingInfo{"max-direct-lights", "with more punctual lights than this, point lights go through the LGH instead of exact direct light", 0, 1000000});
+  visit(lights.emitterSamples,
+        SettingInfo{"emitter-samples", "points on emissive triangles fed to the LGH as direct lights", 0, 16000000});
+  visit(
+      lights.maxDirectLights,
+      SettingInfo{"max-direct-lights",
+                  "with more punctual lights than this, point lights go through the LGH instead of exact direct light",
+                  0, 1000000});
   visit(lights.seed, SettingInfo{"seed", "random seed of the VPLs and emitter samples", 0, 2147483647});
   auto& pass = s.lightPass;
-  visit(pass.alpha, SettingInfo{"alpha", "LGH blending radius R_l = alpha h_l: larger is more accurate and slower", 0.25, 16});
-  visit(s.hierarchy.levels, SettingInfo{"levels", "LGH levels L (0 = automatic: largest L with |S1| < |S0| / 2)", 0, gpu::kMaxBuildLevels});
-  visit(pass.startLevel, SettingInfo{"start-level", "finest level the light pass blends: 1 (S1) or 0 (the input lights)", 0, 1});
-  visit(pass.interleave, SettingInfo{"interleave", "n x n interleaved sampling of the light pass (1, 2, 4)", 1, gpu::kMaxInterleave});
+  visit(pass.alpha,
+        SettingInfo{"alpha", "LGH blending radius R_l = alpha h_l: larger is more accurate and slower", 0.25, 16});
+  visit(s.hierarchy.levels,
+        SettingInfo{"levels", "LGH levels L (0 = automatic: largest L with |S1| < |S0| / 2)", 0, gpu::kMaxBuildLevels});
+  visit(pass.startLevel,
+        SettingInfo{"start-level", "finest level the light pass blends: 1 (S1) or 0 (the input lights)", 0, 1});
+  visit(pass.interleave,
+        SettingInfo{"interleave", "n x n interleaved sampling of the light pass (1, 2, 4)", 1, gpu::kMaxInterleave});
   visit(pass.overdraw, SettingInfo{"overdraw", "count fragments per pixel in the light pass (AOV overdraw, summary)"});
-  visit(pass.volumeCulling, SettingInfo{"volume-culling", "draw each light volume as its 2R sphere's screen rectangle, depth-tested so that surfaces behind it are not shaded (false: the paper's cubes, every covered pixel shaded)"});
-  visit(pass.bruteForce, SettingInfo{"brute-force", "shade every input light at every pixel with weight 1 (exact unshadowed sum; slow)"});
+  visit(pass.volumeCulling,
+        SettingInfo{"volume-culling",
+                    "draw each light volume as its 2R sphere's screen rectangle, depth-tested so that surfaces behind "
+                    "it are not shaded (false: the paper's cubes, every covered pixel shaded)"});
+  visit(
+      pass.bruteForce,
+      SettingInfo{"brute-force", "shade every input light at every pixel with weight 1 (exact unshadowed sum; slow)"});
   auto& shadows = s.shadows;
-  visit(shadows.samples, SettingInfo{"shadow-samples", "k: shadow rays per pixel for indirect light (0 = unshadowed)", 0, gpu::kMaxShadowSamples});
-  visit(shadows.skipFinest, SettingInfo{"shadow-skip-finest", "do not pick lights of the finest level blended (S1, or S0 with start-level 0) for shadow rays"});
+  visit(shadows.samples, SettingInfo{"shadow-samples", "k: shadow rays per pixel for indirect light (0 = unshadowed)",
+                                     0, gpu::kMaxShadowSamples});
+  visit(shadows.skipFinest,
+        SettingInfo{"shadow-skip-finest",
+                    "do not pick lights of the finest level blended (S1, or S0 with start-level 0) for shadow rays"});
   visit(shadows.uniform, SettingInfo{"shadow-uniform", "pick shadow lights uniformly instead of by contribution"});
-  visit(shadows.spread, SettingInfo{"shadow-spread", "jitter of a cluster's shadow-ray target, in its standard deviations", 0, 16});
+  visit(shadows.spread,
+        SettingInfo{"shadow-spread", "jitter of a cluster's shadow-ray target, in its standard deviations", 0, 16});
   auto& filter = s.filter;
   visit(filter.passes, SettingInfo{"filter-passes", "a-trous passes over the shadow ratio (0 = raw ratio)", 0, 8});
   visit(filter.normalPower, SettingInfo{"filter-normal-power", "a-trous normal weight max(0, n.n')^p", 0, 1024});
-  visit(filter.planeSigma, SettingInfo{"filter-plane-sigma", "a-trous tangent-plane distance weight, in pixel footprints", 0.01, 1000});
+  visit(filter.planeSigma,
+        SettingInfo{"filter-plane-sigma", "a-trous tangent-plane distance weight, in pixel footprints", 0.01, 1000});
   visit(filter.ratioSigma, SettingInfo{"filter-ratio-sigma", "a-trous shadow-ratio difference weight", 0.001, 100});
 }
 

@@ -46,17 +46,17 @@
 #define LGH_TEXTURE_DISPLAY_IMAGE 0
 
 // Image units, per pass.
-#define LGH_IMAGE_TILED_POSITION 0           // interleave split
-#define LGH_IMAGE_TILED_NORMAL 1             // interleave split
-#define LGH_IMAGE_RESOLVED_IRRADIANCE 0      // interleave resolve
-#define LGH_IMAGE_RESOLVED_FRAGMENT_COUNTS 1 // interleave resolve
-#define LGH_IMAGE_FRAGMENT_COUNTS 0          // light pass (overdraw)
-#define LGH_IMAGE_PYRAMID_FINER 0            // depth pyramid: the level read
-#define LGH_IMAGE_PYRAMID_COARSER 1          // depth pyramid: the level written
-#define LGH_IMAGE_DIRECT 0                   // direct light
-#define LGH_IMAGE_BRUTE_FORCE_IRRADIANCE 0   // compute brute force
-#define LGH_IMAGE_SHADOW_RATIO 0             // shadow rays
-#define LGH_IMAGE_FILTER_OUT 0               // a-trous
+#define LGH_IMAGE_TILED_POSITION 0            // interleave split
+#define LGH_IMAGE_TILED_NORMAL 1              // interleave split
+#define LGH_IMAGE_RESOLVED_IRRADIANCE 0       // interleave resolve
+#define LGH_IMAGE_RESOLVED_FRAGMENT_COUNTS 1  // interleave resolve
+#define LGH_IMAGE_FRAGMENT_COUNTS 0           // light pass (overdraw)
+#define LGH_IMAGE_PYRAMID_FINER 0             // depth pyramid: the level read
+#define LGH_IMAGE_PYRAMID_COARSER 1           // depth pyramid: the level written
+#define LGH_IMAGE_DIRECT 0                    // direct light
+#define LGH_IMAGE_BRUTE_FORCE_IRRADIANCE 0    // compute brute force
+#define LGH_IMAGE_SHADOW_RATIO 0              // shadow rays
+#define LGH_IMAGE_FILTER_OUT 0                // a-trous
 #define LGH_IMAGE_COMPOSITE_FINAL 0
 #define LGH_IMAGE_COMPOSITE_INDIRECT 1
 

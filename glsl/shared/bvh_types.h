@@ -11,7 +11,7 @@ GPU_STRUCT(BvhNode) {
   vec3 boundsMin;
   uint firstChildOrTriangle;  // interior: index of the first child; leaf: index of its first BvhTriangle
   vec3 boundsMax;
-  uint triangleCount;         // 0 for interior nodes
+  uint triangleCount;  // 0 for interior nodes
 };
 GPU_CHECK_SIZE(BvhNode, 32);
 GPU_CHECK_OFFSET(BvhNode, boundsMax, 16);

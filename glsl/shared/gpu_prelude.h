@@ -31,14 +31,14 @@ using glm::clamp;
 using glm::cross;
 using glm::dot;
 using glm::exp2;
+using glm::floatBitsToInt;
+using glm::floatBitsToUint;
+using glm::floor;
+using glm::intBitsToFloat;
 using glm::max;
 using glm::min;
 using glm::pow;
 using glm::sqrt;
-using glm::floor;
-using glm::floatBitsToInt;
-using glm::floatBitsToUint;
-using glm::intBitsToFloat;
 using glm::uintBitsToFloat;
 }  // namespace lgh::gpu
 #define GPU_NAMESPACE_BEGIN namespace lgh::gpu {

@@ -16,21 +16,21 @@ GPU_CONST uint kMaxBuildLevels = 11u;
 // 128 MiB shader storage block.
 GPU_STRUCT(GpuLight) {
   vec3 position;
-  uint normalOct;   // octahedral unit normal, snorm16 x 2 (see shared/octahedral.h); ignored for omni lights
-  vec3 intensity;   // RGB, W/sr (peak intensity I = Phi/pi for a cosine emitter)
-  uint flags;       // kLightOriented
+  uint normalOct;  // octahedral unit normal, snorm16 x 2 (see shared/octahedral.h); ignored for omni lights
+  vec3 intensity;  // RGB, W/sr (peak intensity I = Phi/pi for a cosine emitter)
+  uint flags;      // kLightOriented
 };
 GPU_CHECK_SIZE(GpuLight, 32);
 
 // A grid light of level >= 1 (or an S0 light rendered at level 0). 64 bytes.
 GPU_STRUCT(GpuGridLight) {
-  vec3 position;      // illumination centre
-  uint level;         // 0 for S0, 1..L for grid levels
-  vec3 intensity;     // summed RGB intensity (energy kept)
-  float omniFraction; // share of omni emission O/W
-  vec3 variance;      // per-axis variance of the centre, >= 0
-  uint vertexKey;     // linear index of its vertex at its level (x + n(y + n z), n = vertices per axis)
-  vec3 meanNormal;    // N/W, |m| <= 1
+  vec3 position;       // illumination centre
+  uint level;          // 0 for S0, 1..L for grid levels
+  vec3 intensity;      // summed RGB intensity (energy kept)
+  float omniFraction;  // share of omni emission O/W
+  vec3 variance;       // per-axis variance of the centre, >= 0
+  uint vertexKey;      // linear index of its vertex at its level (x + n(y + n z), n = vertices per axis)
+  vec3 meanNormal;     // N/W, |m| <= 1
   uint pad;
 };
 GPU_CHECK_SIZE(GpuGridLight, 64);
@@ -56,16 +56,14 @@ GPU_FUNC uint orderedBits(float f) {
   uint u = floatBitsToUint(f);
   return (u & 0x80000000u) != 0u ? ~u : (u | 0x80000000u);
 }
-GPU_FUNC float fromOrderedBits(uint u) {
-  return uintBitsToFloat((u & 0x80000000u) != 0u ? (u & 0x7fffffffu) : ~u);
-}
+GPU_FUNC float fromOrderedBits(uint u) { return uintBitsToFloat((u & 0x80000000u) != 0u ? (u & 0x7fffffffu) : ~u); }
 
 // Grid geometry and the fixed-point scale of one build (uniform block for the build kernels).
 GPU_STRUCT(LghGridParams) {
-  vec4 originAndTopCell;   // xyz: min corner of the top cell, w: H
-  uvec4 levelsAndCounts;   // x: L, y: level being built, z: light count, w: vertices per axis at that level
-  vec4 cellSizeAndScale;   // x: h of the level being built, y: fixed-point scale, zw: unused
-  uvec4 table;             // x: hash capacity (power of two), y: capacity - 1, z: unique-key stop count, w: unused
+  vec4 originAndTopCell;  // xyz: min corner of the top cell, w: H
+  uvec4 levelsAndCounts;  // x: L, y: level being built, z: light count, w: vertices per axis at that level
+  vec4 cellSizeAndScale;  // x: h of the level being built, y: fixed-point scale, zw: unused
+  uvec4 table;            // x: hash capacity (power of two), y: capacity - 1, z: unique-key stop count, w: unused
 };
 GPU_CHECK_SIZE(LghGridParams, 64);
 

@@ -35,8 +35,8 @@ GPU_STRUCT(ShadedLight) {
   vec3 position;
   float omniFraction;  // 1: omni (a punctual light), 0: a pure cosine lobe around meanNormal
   vec3 intensity;
-  uint level;          // 0 for S0
-  vec3 meanNormal;     // |m| <= 1
+  uint level;       // 0 for S0
+  vec3 meanNormal;  // |m| <= 1
   float pad;
 };
 
@@ -95,7 +95,8 @@ GPU_FUNC bool projectedSphereBounds(mat4 m, vec3 c, float r, GPU_OUT(vec4) ndcBo
   float ax = dot(nx, c) + m[3][0], ay = dot(ny, c) + m[3][1], aw = dot(nw, c) + m[3][3];
   float xlo = 0.0f, xhi = 0.0f, ylo = 0.0f, yhi = 0.0f, ulo = 0.0f, uhi = 0.0f, vlo = 0.0f, vhi = 0.0f;
   if (!sphereRatioRange(nx, ax, nw, aw, r, xlo, xhi) || !sphereRatioRange(ny, ay, nw, aw, r, ylo, yhi) ||
-      !sphereRatioRange(nx + ny, ax + ay, nw, aw, r, ulo, uhi) || !sphereRatioRange(nx - ny, ax - ay, nw, aw, r, vlo, vhi))
+      !sphereRatioRange(nx + ny, ax + ay, nw, aw, r, ulo, uhi) ||
+      !sphereRatioRange(nx - ny, ax - ay, nw, aw, r, vlo, vhi))
     return false;
   ndcBounds = vec4(xlo, ylo, xhi, yhi);
   diagonals = vec4(ulo, vlo, uhi, vhi);
@@ -108,14 +109,22 @@ GPU_FUNC vec2 octagonCorner(vec4 box, vec4 diagonals, uint k) {
   float xlo = box.x, ylo = box.y, xhi = box.z, yhi = box.w;
   float ulo = diagonals.x, vlo = diagonals.y, uhi = diagonals.z, vhi = diagonals.w;
   vec2 p;
-  if (k == 0u) p = vec2(ulo - ylo, ylo);
-  else if (k == 1u) p = vec2(vhi + ylo, ylo);
-  else if (k == 2u) p = vec2(xhi, xhi - vhi);
-  else if (k == 3u) p = vec2(xhi, uhi - xhi);
-  else if (k == 4u) p = vec2(uhi - yhi, yhi);
-  else if (k == 5u) p = vec2(vlo + yhi, yhi);
-  else if (k == 6u) p = vec2(xlo, xlo - vlo);
-  else p = vec2(xlo, ulo - xlo);
+  if (k == 0u)
+    p = vec2(ulo - ylo, ylo);
+  else if (k == 1u)
+    p = vec2(vhi + ylo, ylo);
+  else if (k == 2u)
+    p = vec2(xhi, xhi - vhi);
+  else if (k == 3u)
+    p = vec2(xhi, uhi - xhi);
+  else if (k == 4u)
+    p = vec2(uhi - yhi, yhi);
+  else if (k == 5u)
+    p = vec2(vlo + yhi, yhi);
+  else if (k == 6u)
+    p = vec2(xlo, xlo - vlo);
+  else
+    p = vec2(xlo, ulo - xlo);
   return clamp(p, vec2(xlo, ylo), vec2(xhi, yhi));
 }
 
@@ -129,16 +138,12 @@ GPU_FUNC vec2 sphereClipWRange(mat4 m, vec3 c, float r) {
 }
 
 // Clip w of a point: its distance in front of the eye plane (times |row3.xyz|).
-GPU_FUNC float clipW(mat4 m, vec3 x) {
-  return m[0][3] * x.x + m[1][3] * x.y + m[2][3] * x.z + m[3][3];
-}
+GPU_FUNC float clipW(mat4 m, vec3 x) { return m[0][3] * x.x + m[1][3] * x.y + m[2][3] * x.z + m[3][3]; }
 
 // Depth stored for the light pass's culling test: clip w mapped monotonically onto [0, 1) so that
 // any positive w fits a depth buffer; `scale` (about the scene's size) spreads typical depths over
 // the range. w <= 0 (behind the eye) maps to 0.
-GPU_FUNC float cullingDepth(float w, float scale) {
-  return w > 0.0f ? w / (w + scale) : 0.0f;
-}
+GPU_FUNC float cullingDepth(float w, float scale) { return w > 0.0f ? w / (w + scale) : 0.0f; }
 
 // Depth slices for culling surfaces in front of a volume (LightVolumePass): `slices` slices of equal
 // width in culling depth over [0, kSlicedDepth), the last one open-ended. A pixel's stencil holds the
@@ -148,9 +153,7 @@ GPU_CONST float kSlicedDepth = 2.0f / 3.0f;  // cullingDepth(2 x scale): twice t
 GPU_CONST uint kMaxCullingSlices = 255u;     // 8-bit stencil
 
 // Boundary j (1 <= j < slices) between slices j - 1 and j.
-GPU_FUNC float sliceBoundary(uint j, uint slices) {
-  return float(j) * (kSlicedDepth / float(slices));
-}
+GPU_FUNC float sliceBoundary(uint j, uint slices) { return float(j) * (kSlicedDepth / float(slices)); }
 
 // The number of boundaries at or before `depth` (0 .. slices - 1); never more, whatever the rounding,
 // so that comparing a light's slice with the pixel's stencil stays conservative.

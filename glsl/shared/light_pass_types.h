@@ -34,15 +34,15 @@ GPU_STRUCT(LightPassUniforms) {
   uint instanceOffset;  // index of this draw's first light in the bound buffer
   uint volumeShape;     // kVolume*
 
-  uint tilesPerAxis;      // n
+  uint tilesPerAxis;  // n
   uint tileWidth;
   uint tileHeight;
   uint boundLightOffset;  // global index of the bound buffer's first light (S0 is bound in chunks;
                           // tiles are dealt by global index)
 
-  uint imageWidth;   // full resolution
+  uint imageWidth;  // full resolution
   uint imageHeight;
-  uint bruteForce;   // 1: weight 1 for every light
+  uint bruteForce;          // 1: weight 1 for every light
   float cullingDepthScale;  // cullingDepth()'s scale, as the depth target was written with
 
   // Shadow-sample selection (docs/design.md §5)

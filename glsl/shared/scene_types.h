@@ -6,14 +6,14 @@
 GPU_NAMESPACE_BEGIN
 
 GPU_STRUCT(GpuMaterial) {
-  vec4 baseColorFactor;   // linear RGBA
-  vec3 emission;          // emissiveFactor * emissive strength
-  int baseColorTexture;   // index into the scene's textures, -1 if none
-  int emissiveTexture;    // -1 if none
-  float alphaCutoff;      // alphaMode MASK: alpha below this is cut out; < 0: opaque
-  uint baseColorTexCoord; // TEXCOORD set (0 or 1) each texture reads
+  vec4 baseColorFactor;    // linear RGBA
+  vec3 emission;           // emissiveFactor * emissive strength
+  int baseColorTexture;    // index into the scene's textures, -1 if none
+  int emissiveTexture;     // -1 if none
+  float alphaCutoff;       // alphaMode MASK: alpha below this is cut out; < 0: opaque
+  uint baseColorTexCoord;  // TEXCOORD set (0 or 1) each texture reads
   uint emissiveTexCoord;
-  vec4 baseColorUvRow0;   // KHR_texture_transform as two rows: uv' = (dot(row0.xyz, (u, v, 1)), dot(row1.xyz, ...))
+  vec4 baseColorUvRow0;  // KHR_texture_transform as two rows: uv' = (dot(row0.xyz, (u, v, 1)), dot(row1.xyz, ...))
   vec4 baseColorUvRow1;
   vec4 emissiveUvRow0;
   vec4 emissiveUvRow1;
@@ -27,10 +27,10 @@ GPU_CONST uint kLightDirectional = 2u;
 
 GPU_STRUCT(GpuPunctualLight) {
   vec3 position;
-  uint type;           // kLightPoint, kLightSpot, kLightDirectional
-  vec3 direction;      // unit direction the light travels (spot, directional)
-  float range;         // 0 = infinite
-  vec3 intensity;      // W/sr (point, spot) or W/m^2 (directional), RGB
+  uint type;       // kLightPoint, kLightSpot, kLightDirectional
+  vec3 direction;  // unit direction the light travels (spot, directional)
+  float range;     // 0 = infinite
+  vec3 intensity;  // W/sr (point, spot) or W/m^2 (directional), RGB
   float innerConeCos;
   float outerConeCos;
   uint pad0, pad1, pad2;
@@ -65,9 +65,9 @@ GPU_CONST uint kEmitterPunctual = 0u;  // `light` indexes the punctual lights
 GPU_CONST uint kEmitterTriangle = 1u;  // an emissive triangle: v0, edge1, edge2, radiance
 GPU_STRUCT(GpuEmitter) {
   vec3 v0;
-  uint kind;           // kEmitterPunctual or kEmitterTriangle
+  uint kind;  // kEmitterPunctual or kEmitterTriangle
   vec3 edge1;
-  float cdf;           // inclusive cumulative selection probability
+  float cdf;  // inclusive cumulative selection probability
   vec3 edge2;
   float selectionPdf;  // probability of choosing this emitter
   vec3 radiance;       // triangle: emitted radiance (emissive factor x strength); punctual: unused
@@ -80,10 +80,10 @@ GPU_STRUCT(FrameUniforms) {
   mat4 viewProjection;
   mat4 inverseViewProjection;
   mat4 cameraRelativeViewProjection;  // projection x view rotation: clip = M (p - cameraPosition), see camera_view.h
-  vec4 cameraPosition;   // xyz; w unused
-  uvec4 resolution;      // width, height, frame index, 0
-  vec4 sceneScale;       // x: scene bounds diagonal, y: clamp distance d_c, z: pixel footprint per unit
-                         // distance from the camera (2 tan(fovy/2) / height), w: unused
+  vec4 cameraPosition;                // xyz; w unused
+  uvec4 resolution;                   // width, height, frame index, 0
+  vec4 sceneScale;                    // x: scene bounds diagonal, y: clamp distance d_c, z: pixel footprint per unit
+                                      // distance from the camera (2 tan(fovy/2) / height), w: unused
 };
 GPU_CHECK_SIZE(FrameUniforms, 240);
 

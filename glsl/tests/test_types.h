@@ -23,9 +23,9 @@ GPU_STRUCT(TestRay) {
 GPU_CHECK_SIZE(TestRay, 32);
 
 GPU_STRUCT(TestHit) {
-  float t;             // closest hit, or a negative value for none
+  float t;  // closest hit, or a negative value for none
   uint sceneTriangle;
-  uint anyHit;         // the any-hit query's answer (0 or 1)
+  uint anyHit;  // the any-hit query's answer (0 or 1)
   uint pad;
 };
 GPU_CHECK_SIZE(TestHit, 16);

@@ -1,7 +1,6 @@
 // lgh-render: renders a glTF scene headless and writes the image.
 //   lgh-render [SCENE] -o out.png|out.exr --width --height --camera --backend ...
 #include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -10,9 +9,9 @@
 
 #include "render/app/cli_settings.h"
 #include "render/app/light_options.h"
-#include "render/scene/added_lights.h"
 #include "render/gl/context.h"
 #include "render/renderer.h"
+#include "render/scene/added_lights.h"
 #include "render/scene/scene_gpu.h"
 
 namespace {
@@ -133,7 +132,8 @@ int run(int argc, char** argv) {
   const lgh::SceneGpu sceneGpu(scene);
   lgh::Renderer renderer(sceneGpu, settings);
   const double setupMs = msSince(t1);
-  const lgh::FrameStats stats = renderer.render(lgh::makeCameraView(camera, settings.image.width, settings.image.height));
+  const lgh::FrameStats stats =
+      renderer.render(lgh::makeCameraView(camera, settings.image.width, settings.image.height));
 
   lgh::writeImage(c.output, renderer.readImage(lgh::Aov::Final), settings.image.exposure, toneMap);
   for (const auto& [aov, path] : aovs) {

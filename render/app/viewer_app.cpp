@@ -338,7 +338,8 @@ void Viewer::render() {
 
 void Viewer::display() {
   const RenderSettings& s = renderer_.settings();
-  if (displayImage_.width != s.image.width || displayImage_.height != s.image.height) displayImage_ = DisplayImage(s.image.width, s.image.height);
+  if (displayImage_.width != s.image.width || displayImage_.height != s.image.height)
+    displayImage_ = DisplayImage(s.image.width, s.image.height);
   DisplayOptions options;
   options.encoding = displayEncodingOf(state_.view);
   options.exposureEV = state_.settings.image.exposure;
@@ -359,8 +360,10 @@ void Viewer::present() {
   glClear(GL_COLOR_BUFFER_BIT);
   if (rendered_ && fbWidth > 0 && fbHeight > 0 && displayImage_.width > 0) {
     // The image fills the window at its aspect ratio (letterboxed when a scripted size differs).
-    const float scale = std::min(float(fbWidth) / float(displayImage_.width), float(fbHeight) / float(displayImage_.height));
-    const int w = int(std::lround(float(displayImage_.width) * scale)), h = int(std::lround(float(displayImage_.height) * scale));
+    const float scale =
+        std::min(float(fbWidth) / float(displayImage_.width), float(fbHeight) / float(displayImage_.height));
+    const int w = int(std::lround(float(displayImage_.width) * scale)),
+              h = int(std::lround(float(displayImage_.height) * scale));
     const int x = (fbWidth - w) / 2, y = (fbHeight - h) / 2;
     glBlitNamedFramebuffer(displayImage_.framebuffer.id(), 0, 0, 0, displayImage_.width, displayImage_.height, x, y,
                            x + w, y + h, GL_COLOR_BUFFER_BIT,
@@ -395,7 +398,7 @@ void Viewer::captureWindow(const std::filesystem::path& path) {
 
 void Viewer::writeScreenshot(const std::filesystem::path& path) {
   if (!rendered_) throw std::runtime_error(path.string() + ": no frame to save yet");
-  display();  // the view, exposure or overlay may have changed since the window was last drawn
+  display();              // the view, exposure or overlay may have changed since the window was last drawn
   if (isHdrFormat(path))  // the AOV shown, as rendered (linear)
     writeImage(path, renderer_.readImage(state_.view), 0.0f, ToneMap::Clamp);
   else  // what the window shows (without the panel), at the image's size

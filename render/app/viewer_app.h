@@ -43,15 +43,15 @@ class Viewer {
   void onKeyPressed(int key);
 
  private:
-  void step(bool forceRender);               // one frame of the window: input, panel, render, display
-  bool needsRender() const;                  // the last frame is out of date (or continuous rendering)
+  void step(bool forceRender);  // one frame of the window: input, panel, render, display
+  bool needsRender() const;     // the last frame is out of date (or continuous rendering)
   bool minimized() const;
-  bool runCommand(const ScriptCommand& c);   // false: quit
+  bool runCommand(const ScriptCommand& c);  // false: quit
   void handleInput(PanelRequests& requests);
   void applyLightChanges(const std::vector<size_t>& changed);
   void resetCamera();
-  RenderSettings frameSettings() const;      // the settings a frame renders with (size, overdraw)
-  std::string frameKey() const;              // what a rendered frame depends on, to detect changes
+  RenderSettings frameSettings() const;  // the settings a frame renders with (size, overdraw)
+  std::string frameKey() const;          // what a rendered frame depends on, to detect changes
   void render();
   void display();
   void present();
@@ -70,15 +70,15 @@ class Viewer {
   GridPointsPass gridPointsPass_;
   DisplayImage displayImage_;
   CameraController camera_;
-  std::string cameraSetting_;      // settings.image.camera the controller was last reset to
-  CameraView frameView_;           // of the last rendered frame
+  std::string cameraSetting_;  // settings.image.camera the controller was last reset to
+  CameraView frameView_;       // of the last rendered frame
   FrameStats lastFrame_;
   TimingHistory timings_;
   bool rendered_ = false;
-  std::string renderedKey_;        // frameKey() of the last frame (or of the last failed attempt)
-  std::string message_;            // shown in the panel
+  std::string renderedKey_;              // frameKey() of the last frame (or of the last failed attempt)
+  std::string message_;                  // shown in the panel
   std::filesystem::path windowCapture_;  // write the next presented window here (script)
-  bool fixedSize_ = false;         // scripted: render at settings.image.width x height, not the window's size
+  bool fixedSize_ = false;               // scripted: render at settings.image.width x height, not the window's size
   bool showPanel_ = true;
   bool scripted_ = false;
   double lastTime_ = 0;

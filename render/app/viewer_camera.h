@@ -13,11 +13,11 @@ class CameraController {
   void reset(const Camera& camera, float sceneSize);
   const Camera& camera() const { return camera_; }
 
-  void orbit(float yaw, float pitch);        // radians, about the target
-  void look(float yaw, float pitch);         // radians, in place (fly)
-  void pan(float right, float up);           // in scene sizes
-  void dolly(float steps);                   // towards the target (orbit) or along the view (fly)
-  void move(const glm::vec3& local);         // in scene sizes: x right, y up, z forward
+  void orbit(float yaw, float pitch);  // radians, about the target
+  void look(float yaw, float pitch);   // radians, in place (fly)
+  void pan(float right, float up);     // in scene sizes
+  void dolly(float steps);             // towards the target (orbit) or along the view (fly)
+  void move(const glm::vec3& local);   // in scene sizes: x right, y up, z forward
   float targetDistance() const { return distance_; }
 
  private:

@@ -3,7 +3,6 @@
 //   lgh-viewer [SCENE] [--width W --height H (the window) --camera NAME ... every lgh-render setting]
 //              [--view AOV] [--points L] [--render-scale S] [--script "frames=3;set alpha=2;..."]
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -12,9 +11,9 @@
 
 #include "render/app/cli_settings.h"
 #include "render/app/light_options.h"
-#include "render/scene/added_lights.h"
 #include "render/app/viewer_app.h"
 #include "render/gl/context.h"
+#include "render/scene/added_lights.h"
 
 namespace {
 
@@ -30,11 +29,15 @@ int run(int argc, char** argv) {
   lgh::AddedLightOptions addedLights;
 
   app.add_option("scene", scenePath, "glTF scene (.gltf or .glb)")->capture_default_str();
-  app.add_option("--view", view, "image shown: " + [] {
-    std::string s;
-    for (const auto& n : lgh::aovNames()) s += (s.empty() ? "" : ", ") + n;
-    return s;
-  }())->capture_default_str();
+  app.add_option(
+         "--view", view,
+         "image shown: " +
+             [] {
+               std::string s;
+               for (const auto& n : lgh::aovNames()) s += (s.empty() ? "" : ", ") + n;
+               return s;
+             }())
+      ->capture_default_str();
   app.add_option("--points", state.pointsLevel, "draw the grid lights of level L as points (0: none)")
       ->check(CLI::Range(0, 11))
       ->capture_default_str();
@@ -58,7 +61,8 @@ int run(int argc, char** argv) {
   // Without a size the window opens at 1280 x 720 and renders at half that (lgh-render's default
   // 640 x 360): room for the panel, and frames as fast as lgh-render's.
   const bool sized = app.count("--width") > 0 || app.count("--height") > 0;
-  const int windowWidth = sized ? state.settings.image.width : 1280, windowHeight = sized ? state.settings.image.height : 720;
+  const int windowWidth = sized ? state.settings.image.width : 1280,
+            windowHeight = sized ? state.settings.image.height : 720;
   if (!sized && app.count("--render-scale") == 0) state.renderScale = 0.5f;
 
   // Everything cheap is checked before the window opens: a typo costs milliseconds.

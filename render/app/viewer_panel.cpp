@@ -22,9 +22,9 @@ void tooltip(const char* help) {
 }
 
 bool cameraCombo(const char* label, std::string& value, const Scene& scene) {
-  const std::string preview = !value.empty()             ? value
-                              : scene.cameras.empty()    ? std::string("(framing the scene)")
-                                                         : scene.cameras.front().name + " (first)";
+  const std::string preview = !value.empty()          ? value
+                              : scene.cameras.empty() ? std::string("(framing the scene)")
+                                                      : scene.cameras.front().name + " (first)";
   bool changed = false;
   if (ImGui::BeginCombo(label, preview.c_str())) {
     for (const Camera& c : scene.cameras)
@@ -216,8 +216,9 @@ void drawViewSection(ViewerState& state, const PanelInfo& info, PanelRequests& r
       if (ImGui::Selectable(names[i].c_str(), i == current)) state.view = parseAov(names[i]);
     ImGui::EndCombo();
   }
-  tooltip("final; direct; indirect (unshadowed); irradiance; ratio (raw visibility); visibility (filtered); "
-          "overdraw (heat map, turns on counting); emission, albedo, normal, position");
+  tooltip(
+      "final; direct; indirect (unshadowed); irradiance; ratio (raw visibility); visibility (filtered); "
+      "overdraw (heat map, turns on counting); emission, albedo, normal, position");
   if (state.view == Aov::Overdraw) state.settings.lightPass.overdraw = true;  // the heat map needs the counts
   const int levels = info.lastFrame ? info.lastFrame->lights.levels : 0;
   bool points = state.pointsLevel > 0;

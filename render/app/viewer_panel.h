@@ -15,13 +15,13 @@ namespace lgh {
 
 // Everything the panel edits.
 struct ViewerState {
-  RenderSettings settings;   // width and height follow the window (times renderScale)
-  Aov view = Aov::Final;     // the image shown
-  int pointsLevel = 0;       // grid lights of this level drawn as points over it; 0: none
-  float pointSize = 6.0f;    // pixels of the image
-  float renderScale = 1.0f;  // image pixels per window pixel (below 1: faster frames)
-  bool continuous = false;   // render every frame, not only after a change
-  bool fly = false;          // camera: fly (look around in place) rather than orbit
+  RenderSettings settings;            // width and height follow the window (times renderScale)
+  Aov view = Aov::Final;              // the image shown
+  int pointsLevel = 0;                // grid lights of this level drawn as points over it; 0: none
+  float pointSize = 6.0f;             // pixels of the image
+  float renderScale = 1.0f;           // image pixels per window pixel (below 1: faster frames)
+  bool continuous = false;            // render every frame, not only after a change
+  bool fly = false;                   // camera: fly (look around in place) rather than orbit
   std::vector<PunctualLight> lights;  // the scene's punctual lights as edited
   int selectedLight = 0;
 };
@@ -52,12 +52,12 @@ class TimingHistory {
 // Facts the panel shows but does not edit.
 struct PanelInfo {
   const Scene* scene = nullptr;
-  std::string context;            // the GL context's description
+  std::string context;  // the GL context's description
   int imageWidth = 0, imageHeight = 0;
   const FrameStats* lastFrame = nullptr;  // null before the first frame
   const TimingHistory* timings = nullptr;
-  std::string message;            // the last screenshot written, or the last error
-  bool fixedSize = false;         // scripted: the image size is the settings', not the window's
+  std::string message;     // the last screenshot written, or the last error
+  bool fixedSize = false;  // scripted: the image size is the settings', not the window's
 };
 
 PanelRequests drawPanel(ViewerState& state, const PanelInfo& info);

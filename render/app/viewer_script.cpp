@@ -102,8 +102,9 @@ std::vector<ScriptCommand> parseScript(const std::string& script) {
       } else if (key == "quit" && value.empty()) {
         c.kind = ScriptCommand::Kind::Quit;
       } else {
-        throw fail("unknown command (frames=N, set NAME=VALUE, view=AOV, points=L, light=I position=X,Y,Z, "
-                   "screenshot=FILE, window-screenshot=FILE, window=WxH, quit)");
+        throw fail(
+            "unknown command (frames=N, set NAME=VALUE, view=AOV, points=L, light=I position=X,Y,Z, "
+            "screenshot=FILE, window-screenshot=FILE, window=WxH, quit)");
       }
       if (c.kind != ScriptCommand::Kind::Set && c.kind != ScriptCommand::Kind::Light && !rest.empty())
         throw fail("unexpected '" + rest + "'");

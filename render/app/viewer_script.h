@@ -13,10 +13,9 @@
 //   quit                       exit (without it the viewer stays open for interaction)
 // Commands are separated by ';'. Everything is checked before the window opens.
 
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "render/settings.h"
 
@@ -25,16 +24,15 @@ namespace lgh {
 struct ScriptCommand {
   enum class Kind { Frames, Set, View, Points, Light, Screenshot, WindowScreenshot, WindowSize, Quit };
   Kind kind = Kind::Quit;
-  std::string text;    // the command as written, for messages
-  int number = 0;      // Frames: N; Points: L; Light: I
-  std::string name;    // Set: setting; View: AOV; Light: position|direction|intensity; Screenshot: file
-  std::string value;   // Set: value
-  glm::vec3 vector{0}; // Light
-  glm::ivec2 size{0};  // WindowSize
+  std::string text;     // the command as written, for messages
+  int number = 0;       // Frames: N; Points: L; Light: I
+  std::string name;     // Set: setting; View: AOV; Light: position|direction|intensity; Screenshot: file
+  std::string value;    // Set: value
+  glm::vec3 vector{0};  // Light
+  glm::ivec2 size{0};   // WindowSize
 };
 
 // Throws std::invalid_argument("script: '<command>': <problem>").
 std::vector<ScriptCommand> parseScript(const std::string& script);
-
 
 }  // namespace lgh

@@ -14,8 +14,12 @@ struct BackendName {
   const char* name;
 };
 constexpr BackendName kBackendNames[] = {
-    {Backend::Auto, "auto"},           {Backend::Egl, "egl"},       {Backend::EglDevice, "egl-device"},
-    {Backend::EglSurfaceless, "egl-surfaceless"}, {Backend::OSMesa, "osmesa"}, {Backend::Window, "window"},
+    {Backend::Auto, "auto"},
+    {Backend::Egl, "egl"},
+    {Backend::EglDevice, "egl-device"},
+    {Backend::EglSurfaceless, "egl-surfaceless"},
+    {Backend::OSMesa, "osmesa"},
+    {Backend::Window, "window"},
 };
 
 std::string alternatives() {
@@ -69,9 +73,10 @@ std::unique_ptr<Context> Context::create(const ContextOptions& options) {
   } catch (const ContextError& e) {
     failures += std::string("\n  osmesa: ") + e.what();
   }
-  throw ContextError("no headless OpenGL 4.5 core context could be created:" + failures +
-                     "\n(install libegl-mesa0 and libgl1-mesa-dri for EGL, libosmesa6 for OSMesa, or pick one with --backend: " +
-                     alternatives() + ")");
+  throw ContextError(
+      "no headless OpenGL 4.5 core context could be created:" + failures +
+      "\n(install libegl-mesa0 and libgl1-mesa-dri for EGL, libosmesa6 for OSMesa, or pick one with --backend: " +
+      alternatives() + ")");
 }
 
 namespace {

@@ -28,7 +28,8 @@ class WindowContext final : public Context {
     glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, options.debug ? GLFW_TRUE : GLFW_FALSE);
     glfwWindowHint(GLFW_VISIBLE, options.windowVisible ? GLFW_TRUE : GLFW_FALSE);
     glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
-    window_ = glfwCreateWindow(options.windowWidth, options.windowHeight, options.windowTitle.c_str(), nullptr, nullptr);
+    window_ =
+        glfwCreateWindow(options.windowWidth, options.windowHeight, options.windowTitle.c_str(), nullptr, nullptr);
     if (!window_) {
       std::string why = lastGlfwError;
       glfwTerminate();

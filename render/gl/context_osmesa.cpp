@@ -11,11 +11,16 @@ namespace {
 class OSMesaContextImpl final : public Context {
  public:
   explicit OSMesaContextImpl(const ContextOptions& options) {
-    const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
-                           OSMESA_DEPTH_BITS, 24,
-                           OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                           OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                           OSMESA_CONTEXT_MINOR_VERSION, 5,
+    const int attribs[] = {OSMESA_FORMAT,
+                           OSMESA_RGBA,
+                           OSMESA_DEPTH_BITS,
+                           24,
+                           OSMESA_PROFILE,
+                           OSMESA_CORE_PROFILE,
+                           OSMESA_CONTEXT_MAJOR_VERSION,
+                           4,
+                           OSMESA_CONTEXT_MINOR_VERSION,
+                           5,
                            0};
     context_ = OSMesaCreateContextAttribs(attribs, nullptr);
     if (!context_) throw ContextError("OSMesa: OSMesaCreateContextAttribs returned no OpenGL 4.5 core context");

@@ -92,7 +92,8 @@ GLuint compileStage(GLenum stage, const std::string& path, const Defines& define
     std::string log(size_t(std::max(length, 1)), '\0');
     glGetShaderInfoLog(shader, length, nullptr, log.data());
     glDeleteShader(shader);
-    throw std::runtime_error("compiling glsl/" + path + " failed:\n" + log + "source strings:\n" + expander.fileTable());
+    throw std::runtime_error("compiling glsl/" + path + " failed:\n" + log + "source strings:\n" +
+                             expander.fileTable());
   }
   return shader;
 }
@@ -159,7 +160,8 @@ void Program::dispatch1D(size_t invocations, unsigned localSize) const {
 void Program::dispatch2D(int width, int height, glm::uvec2 localSize) const {
   if (width <= 0 || height <= 0) return;
   use();
-  glDispatchCompute((GLuint(width) + localSize.x - 1) / localSize.x, (GLuint(height) + localSize.y - 1) / localSize.y, 1);
+  glDispatchCompute((GLuint(width) + localSize.x - 1) / localSize.x, (GLuint(height) + localSize.y - 1) / localSize.y,
+                    1);
 }
 
 }  // namespace lgh::gl

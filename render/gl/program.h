@@ -3,12 +3,11 @@
 // (LGH_SHADER_DIR overrides them from disk). `#include "shared/x.h"` is resolved here, once per file,
 // so the structs in glsl/shared/ are written once and compiled by both C++ and GLSL.
 
+#include <glm/glm.hpp>
 #include <string>
 #include <unordered_map>
 #include <utility>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "render/gl/resource.h"
 

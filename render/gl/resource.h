@@ -36,12 +36,24 @@ class Handle {
   GLuint name_ = 0;
 };
 
-struct DeleteBuffer { void operator()(GLuint n) const { glDeleteBuffers(1, &n); } };
-struct DeleteTexture { void operator()(GLuint n) const { glDeleteTextures(1, &n); } };
-struct DeleteFramebuffer { void operator()(GLuint n) const { glDeleteFramebuffers(1, &n); } };
-struct DeleteVertexArray { void operator()(GLuint n) const { glDeleteVertexArrays(1, &n); } };
-struct DeleteProgram { void operator()(GLuint n) const { glDeleteProgram(n); } };
-struct DeleteQuery { void operator()(GLuint n) const { glDeleteQueries(1, &n); } };
+struct DeleteBuffer {
+  void operator()(GLuint n) const { glDeleteBuffers(1, &n); }
+};
+struct DeleteTexture {
+  void operator()(GLuint n) const { glDeleteTextures(1, &n); }
+};
+struct DeleteFramebuffer {
+  void operator()(GLuint n) const { glDeleteFramebuffers(1, &n); }
+};
+struct DeleteVertexArray {
+  void operator()(GLuint n) const { glDeleteVertexArrays(1, &n); }
+};
+struct DeleteProgram {
+  void operator()(GLuint n) const { glDeleteProgram(n); }
+};
+struct DeleteQuery {
+  void operator()(GLuint n) const { glDeleteQueries(1, &n); }
+};
 
 using VertexArrayHandle = Handle<DeleteVertexArray>;
 using FramebufferHandle = Handle<DeleteFramebuffer>;

@@ -1,10 +1,9 @@
 #pragma once
 // 2-D textures with immutable storage, and a framebuffer that bundles a set of them.
 
+#include <glm/glm.hpp>
 #include <initializer_list>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "render/gl/resource.h"
 

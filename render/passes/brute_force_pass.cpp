@@ -36,7 +36,8 @@ void BruteForcePass::execute(const GBuffer& gbuffer, const gl::Buffer& lights, s
   const size_t perDispatch = shadowedIn ? kMaxShadowedLightsPerDispatch : maxBlockLights_;
   for (size_t first = 0; first < lightCount; first += perDispatch) {
     const size_t n = std::min(perDispatch, lightCount - first);
-    lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight), n * sizeof(gpu::GpuLight));
+    lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight),
+                     n * sizeof(gpu::GpuLight));
     program.set("lightCount", unsigned(n));
     program.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

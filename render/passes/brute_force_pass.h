@@ -19,7 +19,7 @@ class BruteForcePass {
                gl::Texture2D& irradiance, const SceneGpu* shadowedIn = nullptr) const;
 
  private:
-  static constexpr size_t kMaxLightsPerDispatch = 32768;       // see the constructor: llvmpipe's loop limit
+  static constexpr size_t kMaxLightsPerDispatch = 32768;  // see the constructor: llvmpipe's loop limit
   static constexpr size_t kMaxShadowedLightsPerDispatch = 32;
   gl::Program program_, shadowed_;
   size_t maxBlockLights_ = 0;

@@ -10,8 +10,7 @@
 
 namespace lgh {
 
-DisplayImage::DisplayImage(int w, int h)
-    : width(w), height(h), color(w, h, GL_RGBA8), framebuffer({&color}, nullptr) {}
+DisplayImage::DisplayImage(int w, int h) : width(w), height(h), color(w, h, GL_RGBA8), framebuffer({&color}, nullptr) {}
 
 std::vector<std::uint8_t> DisplayImage::readRGB() const {
   std::vector<std::uint8_t> rgb(size_t(width) * size_t(height) * 3);
@@ -45,8 +44,8 @@ void DisplayPass::execute(const gl::Texture2D& image, const DisplayOptions& opti
   gl::DebugGroup group("display");
   if (image.width() != out.width || image.height() != out.height)
     throw std::invalid_argument("display pass: a " + std::to_string(image.width()) + " x " +
-                                std::to_string(image.height()) + " image into a " + std::to_string(out.width) +
-                                " x " + std::to_string(out.height) + " target");
+                                std::to_string(image.height()) + " image into a " + std::to_string(out.width) + " x " +
+                                std::to_string(out.height) + " target");
   // Counts are integers (R32UI) and need their own sampler type, hence their own program.
   const bool counts = options.encoding == gpu::kDisplayCounts;
   const gl::Program& program = counts ? countProgram_ : floatProgram_;

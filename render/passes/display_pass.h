@@ -35,7 +35,7 @@ struct DisplayOptions {
   std::uint32_t encoding = 0;  // gpu::kDisplay*
   float exposureEV = 0.0f;     // radiance only
   ToneMap toneMap = ToneMap::Aces;
-  unsigned largestCount = 1;   // counts only: the count shown as the top of the heat map
+  unsigned largestCount = 1;  // counts only: the count shown as the top of the heat map
 };
 
 class DisplayPass {

@@ -28,10 +28,10 @@
 namespace lgh {
 
 struct LghBuildOptions {
-  int levels = 0;                   // 0: automatic (the paper's rule); else 1..LghBuildPass::kMaxLevels
-  bool gatherCoarseLevels = true;   // false: scatter S0 into every level (the reference build)
-  bool floatAtomics = false;        // S1 sums in float atomics (GL_NV_shader_atomic_float) instead of 64-bit fixed point
-  double eMin = 0.0;                // smallest top-cell edge (one light, coincident lights); <= 0 means 1
+  int levels = 0;                  // 0: automatic (the paper's rule); else 1..LghBuildPass::kMaxLevels
+  bool gatherCoarseLevels = true;  // false: scatter S0 into every level (the reference build)
+  bool floatAtomics = false;       // S1 sums in float atomics (GL_NV_shader_atomic_float) instead of 64-bit fixed point
+  double eMin = 0.0;               // smallest top-cell edge (one light, coincident lights); <= 0 means 1
   size_t maxLightsPerDispatch = 0;  // 0: as many as one storage block holds; tests set it small to exercise chunking
 };
 
@@ -48,7 +48,7 @@ struct GpuHierarchy {
   std::vector<LghLevelRange> levels;  // levels[l] for l in 1..L; levels[0] unused
   gl::Buffer gridLights;              // gpu::GpuGridLight, level 1 first
   size_t gridLightCount = 0;
-  size_t litLightCount = 0;           // input lights with luminance > 0
+  size_t litLightCount = 0;  // input lights with luminance > 0
   // Reads level l back, for tests and statistics.
   std::vector<gpu::GpuGridLight> downloadLevel(int level) const;
 };
@@ -66,9 +66,9 @@ class LghBuildPass {
                gl::Profiler* profiler = nullptr);
 
  private:
-  struct LevelTable {  // the occupied vertices of one level
+  struct LevelTable {                         // the occupied vertices of one level
     gl::Buffer keys, slotIndex, compactKeys;  // lookup: hash table, slot -> light index, light -> key
-    gl::Buffer gridLights;                   // the level's grid lights, until merged
+    gl::Buffer gridLights;                    // the level's grid lights, until merged
     size_t capacity = 0, count = 0;
     void releaseLookup() { keys = {}, slotIndex = {}, compactKeys = {}; }
   };

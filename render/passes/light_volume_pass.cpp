@@ -16,9 +16,9 @@ namespace lgh {
 // One instanced draw: `count` lights from index `first` of the buffer bound at LGH_BINDING_PASS0.
 struct LightVolumePass::Draw {
   const gl::Buffer* buffer = nullptr;
-  bool s0Input = false;                  // GpuLight (S0) rather than GpuGridLight
-  unsigned shape = gpu::kVolumeCube;     // gpu::kVolume*
-  bool sortedBySlice = false;            // culled grid lights: drawn slice by slice (VolumeCulling)
+  bool s0Input = false;               // GpuLight (S0) rather than GpuGridLight
+  unsigned shape = gpu::kVolumeCube;  // gpu::kVolume*
+  bool sortedBySlice = false;         // culled grid lights: drawn slice by slice (VolumeCulling)
   size_t first = 0, count = 0;
   size_t boundOffset = 0, boundLights = 0;  // S0: the chunk bound (in lights); grid lights: whole buffer
 };
@@ -26,9 +26,7 @@ struct LightVolumePass::Draw {
 namespace {
 
 // Vertices per instance and primitive of each volume shape (light_volume.vert).
-GLsizei verticesOf(unsigned shape) {
-  return shape == gpu::kVolumeFullScreen ? 3 : shape == gpu::kVolumeCube ? 36 : 8;
-}
+GLsizei verticesOf(unsigned shape) { return shape == gpu::kVolumeFullScreen ? 3 : shape == gpu::kVolumeCube ? 36 : 8; }
 GLenum primitiveOf(unsigned shape) { return shape == gpu::kVolumeCulled ? GL_TRIANGLE_STRIP : GL_TRIANGLES; }
 
 }  // namespace
@@ -58,9 +56,9 @@ LightVolumePass::LightVolumePass(bool floatAtomics) : floatAtomics_(floatAtomics
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &ssboAlignment);
   // Chunks start at multiples of this many lights, so every chunk's byte offset is aligned.
   const size_t lightsPerAlignment = std::max<size_t>(1, size_t(ssboAlignment) / sizeof(gpu::GpuLight));
-  maxBlockLights_ = std::max<size_t>(size_t(std::max<GLint64>(maxBlock, 1 << 24)) / sizeof(gpu::GpuLight) /
-                                         lightsPerAlignment * lightsPerAlignment,
-                                     lightsPerAlignment);
+  maxBlockLights_ = std::max<size_t>(
+      size_t(std::max<GLint64>(maxBlock, 1 << 24)) / sizeof(gpu::GpuLight) / lightsPerAlignment * lightsPerAlignment,
+      lightsPerAlignment);
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
   emptyVertexArray_ = gl::VertexArrayHandle(vao);
@@ -87,9 +85,8 @@ const gl::Program& LightVolumePass::program(const Draw& draw, const LightPassOpt
 void LightVolumePass::checkTarget(const LightPassOptions& options, const LightPassTarget& target, int levels) {
   if (options.pass.overdraw && !target.fragmentCounts)
     throw std::invalid_argument("light pass: counting fragments needs a fragment-count target");
-  if (options.shadows.samples > 0 &&
-      (!target.shadowSlots || target.shadowSlots->k != options.shadows.samples ||
-       target.shadowSlots->size != target.layout.targetSize()))
+  if (options.shadows.samples > 0 && (!target.shadowSlots || target.shadowSlots->k != options.shadows.samples ||
+                                      target.shadowSlots->size != target.layout.targetSize()))
     throw std::invalid_argument("light pass: shadow selection needs slots allocated for the target and k");
   if (options.pass.startLevel != 0 && options.pass.startLevel != 1)
     throw std::invalid_argument("light pass: the first level is 0 (S0) or 1 (S1), not " +
@@ -126,7 +123,8 @@ std::vector<LightVolumePass::Draw> LightVolumePass::drawList(const gl::Buffer& l
   counts.lightsPerLevel.assign(size_t(std::max(L, 0)) + 1, 0);
   const unsigned volume = options.pass.volumeCulling ? gpu::kVolumeCulled : gpu::kVolumeCube;
   const bool drawS0 = options.pass.bruteForce || (options.pass.startLevel == 0 && L >= 1);
-  if (L >= 1 && hierarchy.levels.size() < size_t(L) + 1) throw std::logic_error("light pass: the hierarchy's level table is incomplete");
+  if (L >= 1 && hierarchy.levels.size() < size_t(L) + 1)
+    throw std::logic_error("light pass: the hierarchy's level table is incomplete");
   if (drawS0) {
     const unsigned shape = options.pass.bruteForce ? gpu::kVolumeFullScreen : volume;
     for (size_t first = 0; first < lightCount; first += maxBlockLights_) {
@@ -190,7 +188,8 @@ void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHi
 void LightVolumePass::bindTargets(const LightPassOptions& options, LightPassTarget& target) {
   const glm::ivec2 size = target.layout.targetSize();
   // Made per frame (the targets may change) and kept until the next: deleting a bound framebuffer unbinds it.
-  framebuffer_ = gl::Framebuffer({&target.irradiance}, options.pass.volumeCulling ? &culling_.depthStencil(size) : nullptr);
+  framebuffer_ =
+      gl::Framebuffer({&target.irradiance}, options.pass.volumeCulling ? &culling_.depthStencil(size) : nullptr);
   framebuffer_.bind();
   glViewport(0, 0, size.x, size.y);
   const float zero[4] = {0, 0, 0, 0};
@@ -208,8 +207,8 @@ void LightVolumePass::prepareCulling(const std::vector<Draw>& draws, const GpuHi
   culling_.prepare(target.position, options.sceneSize);
   for (const Draw& d : draws)
     if (d.sortedBySlice)
-      culling_.sortBySlice({d.buffer, d.first, d.count, options.pass.alpha, float(hierarchy.grid.topCellSize),
-                            options.sceneSize, L});
+      culling_.sortBySlice(
+          {d.buffer, d.first, d.count, options.pass.alpha, float(hierarchy.grid.topCellSize), options.sceneSize, L});
 }
 
 // What the light volumes read and write besides the framebuffer; after the culling preparation, which
@@ -244,8 +243,14 @@ void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPass
     d.buffer->bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, d.boundOffset * stride, d.boundLights * stride);
     uniforms_.bindRange(GL_UNIFORM_BUFFER, LGH_UBO_PASS, i * uniformStride_, sizeof(gpu::LightPassUniforms));
     program(d, options).use();
-    if (d.shape == gpu::kVolumeCube) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
-    if (d.shape == gpu::kVolumeCulled) glEnable(GL_DEPTH_TEST); else glDisable(GL_DEPTH_TEST);
+    if (d.shape == gpu::kVolumeCube)
+      glEnable(GL_CULL_FACE);
+    else
+      glDisable(GL_CULL_FACE);
+    if (d.shape == gpu::kVolumeCulled)
+      glEnable(GL_DEPTH_TEST);
+    else
+      glDisable(GL_DEPTH_TEST);
     if (d.sortedBySlice) {
       culling_.drawSorted();
     } else {

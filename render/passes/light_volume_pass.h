@@ -52,10 +52,10 @@ struct ShadowSlots {
 struct LightPassTarget {
   const gl::Texture2D& position;
   const gl::Texture2D& normal;
-  TileLayout layout;                // n x n tiles; 1: the image itself
-  gl::Texture2D& irradiance;        // RGBA32F
-  gl::Texture2D* fragmentCounts;    // R32UI, required with countFragments
-  ShadowSlots* shadowSlots;         // required with shadowSamples > 0
+  TileLayout layout;              // n x n tiles; 1: the image itself
+  gl::Texture2D& irradiance;      // RGBA32F
+  gl::Texture2D* fragmentCounts;  // R32UI, required with countFragments
+  ShadowSlots* shadowSlots;       // required with shadowSamples > 0
 };
 
 struct LightPassDraws {
@@ -87,9 +87,9 @@ class LightVolumePass {
 
   bool floatAtomics_;
   std::map<std::string, gl::Program> programs_;  // by their defines, compiled on first use
-  gl::Buffer uniforms_;                  // one LightPassUniforms per draw, at aligned offsets
+  gl::Buffer uniforms_;                          // one LightPassUniforms per draw, at aligned offsets
   size_t uniformStride_ = 0;
-  size_t maxBlockLights_ = 0;            // S0 lights per storage block binding
+  size_t maxBlockLights_ = 0;               // S0 lights per storage block binding
   gl::VertexArrayHandle emptyVertexArray_;  // draws take their vertices from gl_VertexID
   VolumeCulling culling_;                   // depth, slices, pyramid and sorting for culled volumes
   gl::Framebuffer framebuffer_;             // irradiance (+ culling depth-stencil), made by each execute

@@ -115,7 +115,8 @@ void VolumeCulling::buildPyramid(const gl::Texture2D& position, float sceneSize)
   glGetTextureParameteriv(pyramid_.id(), GL_TEXTURE_IMMUTABLE_LEVELS, &levels);
   for (int level = 0; level < levels; ++level) {
     pyramidProgram_.set("level", level);
-    glBindImageTexture(LGH_IMAGE_PYRAMID_FINER, pyramid_.id(), std::max(level - 1, 0), GL_FALSE, 0, GL_READ_ONLY, GL_R32F);
+    glBindImageTexture(LGH_IMAGE_PYRAMID_FINER, pyramid_.id(), std::max(level - 1, 0), GL_FALSE, 0, GL_READ_ONLY,
+                       GL_R32F);
     glBindImageTexture(LGH_IMAGE_PYRAMID_COARSER, pyramid_.id(), level, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     pyramidProgram_.dispatch2D(std::max(pyramid_.width() >> level, 1), std::max(pyramid_.height() >> level, 1), {8, 8});
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -146,7 +147,8 @@ void VolumeCulling::sortBySlice(const SortInputs& in) {
   p.set("depthScale", in.sceneSize);
   p.set("margin", kCullingMargin);
   p.set("levels", unsigned(in.levels));
-  const GLbitfield barriers = GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT;
+  const GLbitfield barriers =
+      GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT;
   // Step 0 in one work group, in order, a range per dispatch: each invocation loops about 2 x 64 times
   // per 64 lights, so 16K lights keep it under llvmpipe's 65,535 iterations.
   constexpr size_t kRankRange = 16384;

@@ -37,8 +37,8 @@ class VplPass {
  private:
   void updateEmitters();  // rebuilds the table of all emitters after the punctual lights changed
   // Runs vpl_generate.comp: record `slot` of `samples` x `bounces` slots goes to out[offset + slot].
-  void generate(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset,
-                size_t samples, int bounces, std::uint32_t seed);
+  void generate(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset, size_t samples,
+                int bounces, std::uint32_t seed);
   // Moves the written records of `slotCount` slots to out[offset...], in slot order; returns their count.
   size_t compact(size_t slotCount, gl::Buffer& out, size_t offset);
 
@@ -46,7 +46,7 @@ class VplPass {
   EmitterTable allEmitters_, triangleEmitters_;
   gl::Buffer allEmitterBuffer_, triangleEmitterBuffer_;
   gl::Buffer pathSlots_, slotIndex_;  // the paths' fixed slots (GpuLight, flags 0: empty) and their compaction
-  unsigned emittersLightsVersion_;  // SceneGpu::lightsVersion() that allEmitters_ was built from
+  unsigned emittersLightsVersion_;    // SceneGpu::lightsVersion() that allEmitters_ was built from
   gl::Program paths_, emitterSamples_, compactFlags_, compactWrite_;
   gl::PrefixSum prefixSum_;
 };

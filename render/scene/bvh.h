@@ -7,9 +7,8 @@
 // The scene is static, so the build is paid once per load; refitting is not needed.
 
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "shared/bvh_types.h"
 

@@ -32,7 +32,8 @@ void addTriangles(const Scene& scene, std::vector<gpu::GpuEmitter>& out, std::ve
     glm::dvec3& mean = textureMean[scene.triangleMaterials[t]];
     if (mean.x < 0) mean = meanTextureColor(scene, m.emissiveTexture);
     const glm::vec3 v0 = scene.positions[scene.indices[3 * t]];
-    const glm::vec3 e1 = scene.positions[scene.indices[3 * t + 1]] - v0, e2 = scene.positions[scene.indices[3 * t + 2]] - v0;
+    const glm::vec3 e1 = scene.positions[scene.indices[3 * t + 1]] - v0,
+                    e2 = scene.positions[scene.indices[3 * t + 2]] - v0;
     const double area = 0.5 * glm::length(glm::cross(glm::dvec3(e1), glm::dvec3(e2)));
     const glm::dvec3 power = kPi * area * glm::dvec3(m.emission) * mean;
     if (!(luminance(power) > 0)) continue;  // zero-area or black: never chosen
@@ -76,8 +77,10 @@ double spotSolidAngleFactor(float innerConeCos, float outerConeCos) {
 glm::dvec3 emitterPower(const PunctualLight& light, const Bounds& sceneBounds) {
   const glm::dvec3 I(light.intensity);
   switch (light.type) {
-    case LightType::Point: return 4.0 * kPi * I;
-    case LightType::Spot: return spotSolidAngleFactor(light.innerConeCos, light.outerConeCos) * I;
+    case LightType::Point:
+      return 4.0 * kPi * I;
+    case LightType::Spot:
+      return spotSolidAngleFactor(light.innerConeCos, light.outerConeCos) * I;
     case LightType::Directional: {
       const double r = 0.5 * double(sceneBounds.diagonal());
       return kPi * r * r * I;

@@ -7,9 +7,8 @@
 //   directional  E pi r^2, over a disk covering the scene's bounding sphere (radius r)
 //   triangle     pi L A   (one-sided Lambertian emitter, L = emission x mean of the emissive texture)
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "render/scene/scene.h"
 #include "shared/scene_types.h"

@@ -14,8 +14,6 @@
 // finite double but an infinite float.
 #include <tiny_gltf.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -27,6 +25,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -178,26 +177,41 @@ float readComponent(const unsigned char* p, int componentType, bool normalized) 
 
 const char* componentTypeName(int componentType) {
   switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
-    default: return "an invalid component type";
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+      return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+      return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT:
+      return "FLOAT";
+    default:
+      return "an invalid component type";
   }
 }
 
 const char* typeName(int type) {
   switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
-    case TINYGLTF_TYPE_VEC2: return "VEC2";
-    case TINYGLTF_TYPE_VEC3: return "VEC3";
-    case TINYGLTF_TYPE_VEC4: return "VEC4";
-    case TINYGLTF_TYPE_MAT2: return "MAT2";
-    case TINYGLTF_TYPE_MAT3: return "MAT3";
-    case TINYGLTF_TYPE_MAT4: return "MAT4";
-    default: return "an invalid type";
+    case TINYGLTF_TYPE_SCALAR:
+      return "SCALAR";
+    case TINYGLTF_TYPE_VEC2:
+      return "VEC2";
+    case TINYGLTF_TYPE_VEC3:
+      return "VEC3";
+    case TINYGLTF_TYPE_VEC4:
+      return "VEC4";
+    case TINYGLTF_TYPE_MAT2:
+      return "MAT2";
+    case TINYGLTF_TYPE_MAT3:
+      return "MAT3";
+    case TINYGLTF_TYPE_MAT4:
+      return "MAT4";
+    default:
+      return "an invalid type";
   }
 }
 
@@ -213,7 +227,8 @@ bool allowedFormat(const std::string& attribute, const AttributeFormat& f, bool 
             kUB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, kS = TINYGLTF_COMPONENT_TYPE_SHORT,
             kUS = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
   const bool isFloat = f.componentType == kF && !f.normalized;
-  const bool smallInt = f.componentType == kB || f.componentType == kUB || f.componentType == kS || f.componentType == kUS;
+  const bool smallInt =
+      f.componentType == kB || f.componentType == kUB || f.componentType == kS || f.componentType == kUS;
   const bool signedNormalized = f.normalized && (f.componentType == kB || f.componentType == kS);
   const bool unsignedNormalized = f.normalized && (f.componentType == kUB || f.componentType == kUS);
   if (attribute == "POSITION") return f.type == TINYGLTF_TYPE_VEC3 && (isFloat || (quantization && smallInt));
@@ -504,7 +519,8 @@ class GltfLoader {
     for (const std::vector<double>* values : {&node.matrix, &node.translation, &node.rotation, &node.scale})
       for (double v : *values)
         if (!fitsFloat(v))
-          fail(nodeLabel(i) + " has a transform number " + number(v) + " that is not a finite float (NaN, Inf or beyond 3.4e38)");
+          fail(nodeLabel(i) + " has a transform number " + number(v) +
+               " that is not a finite float (NaN, Inf or beyond 3.4e38)");
     if (!node.matrix.empty()) {
       if (!node.translation.empty() || !node.rotation.empty() || !node.scale.empty())
         fail(nodeLabel(i) + " has both a matrix and translation/rotation/scale (glTF allows one or the other)");
@@ -513,7 +529,8 @@ class GltfLoader {
       m = glm::make_mat4(node.matrix.data());  // both column-major
       // A node matrix must be an affine TRS: a projective bottom row would be silently dropped.
       if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
-        fail(nodeLabel(i) + " has a matrix whose last row is not (0, 0, 0, 1): not decomposable to translation/rotation/scale");
+        fail(nodeLabel(i) +
+             " has a matrix whose last row is not (0, 0, 0, 1): not decomposable to translation/rotation/scale");
     } else {
       auto check = [&](const std::vector<double>& v, size_t n, const char* what) {
         if (!v.empty() && v.size() != n)
@@ -683,8 +700,8 @@ class GltfLoader {
       const auto& s = acc.sparse;
       const size_t n = size_t(std::max(s.count, 0));
       if (n > acc.count)
-        fail(what + ": the sparse substitution overrides " + std::to_string(n) + " elements, more than the accessor's " +
-             std::to_string(acc.count));
+        fail(what + ": the sparse substitution overrides " + std::to_string(n) +
+             " elements, more than the accessor's " + std::to_string(acc.count));
       if (!isIndexType(s.indices.componentType))
         fail(what + ": sparse indices have component type " + std::to_string(s.indices.componentType) +
              ", expected an unsigned integer type");
@@ -945,8 +962,10 @@ class GltfLoader {
       normals = readAttribute<3>(a, "NORMAL", what, vertexCount);
     else
       missingNormals_.add(what);
-    if (const int a = attribute("TEXCOORD_0"); a >= 0) texcoords[0] = readAttribute<2>(a, "TEXCOORD_0", what, vertexCount);
-    if (const int a = attribute("TEXCOORD_1"); a >= 0) texcoords[1] = readAttribute<2>(a, "TEXCOORD_1", what, vertexCount);
+    if (const int a = attribute("TEXCOORD_0"); a >= 0)
+      texcoords[0] = readAttribute<2>(a, "TEXCOORD_0", what, vertexCount);
+    if (const int a = attribute("TEXCOORD_1"); a >= 0)
+      texcoords[1] = readAttribute<2>(a, "TEXCOORD_1", what, vertexCount);
     if (const int a = attribute("COLOR_0"); a >= 0) colors = readColors(a, what, vertexCount);
     checkTexCoordSets(prim, what, texcoords);
 
@@ -991,7 +1010,8 @@ class GltfLoader {
       scene_.origin = glm::round(0.5 * (lo + hi) / grid) * grid;
     }
     scene_.positions.resize(worldPositions_.size());
-    for (size_t i = 0; i < worldPositions_.size(); ++i) scene_.positions[i] = glm::vec3(worldPositions_[i] - scene_.origin);
+    for (size_t i = 0; i < worldPositions_.size(); ++i)
+      scene_.positions[i] = glm::vec3(worldPositions_[i] - scene_.origin);
     worldPositions_.clear();
     worldPositions_.shrink_to_fit();
   }
@@ -1014,8 +1034,7 @@ class GltfLoader {
       const auto& bc = src.pbrMetallicRoughness.baseColorFactor;
       if (bc.size() != 4) fail(what + " has a baseColorFactor that is not 4 numbers");
       for (double c : bc)
-        if (!(c >= 0.0 && c <= 1.0))
-          fail(what + " has a baseColorFactor component " + number(c) + " outside [0, 1]");
+        if (!(c >= 0.0 && c <= 1.0)) fail(what + " has a baseColorFactor component " + number(c) + " outside [0, 1]");
       dst.baseColorFactor = glm::vec4(bc[0], bc[1], bc[2], bc[3]);
       glm::vec3 emissive(0.0f);
       if (src.emissiveFactor.size() == 3)
@@ -1056,7 +1075,8 @@ class GltfLoader {
         dst.emissiveTexture = textureFor(src.emissiveTexture, dst.name, "emissive");
         dst.baseColorTexCoord = effectiveTexCoord(src.pbrMetallicRoughness.baseColorTexture);
         dst.emissiveTexCoord = effectiveTexCoord(src.emissiveTexture);
-        dst.baseColorUvTransform = uvTransform(src.pbrMetallicRoughness.baseColorTexture, what + " base colour texture");
+        dst.baseColorUvTransform =
+            uvTransform(src.pbrMetallicRoughness.baseColorTexture, what + " base colour texture");
         dst.emissiveUvTransform = uvTransform(src.emissiveTexture, what + " emissive texture");
       }
     }
@@ -1329,10 +1349,10 @@ class GltfLoader {
   fs::path path_;
   tinygltf::Model model_;
   Scene scene_;
-  std::vector<glm::dmat4> world_;  // per node; identity for nodes outside the displayed scene
+  std::vector<glm::dmat4> world_;           // per node; identity for nodes outside the displayed scene
   std::vector<glm::dvec3> worldPositions_;  // vertices in world space until chooseSceneOrigin()
-  bool meshQuantization_ = false;  // KHR_mesh_quantization used: more attribute formats allowed
-  std::vector<int> drawOrder_;     // nodes of the displayed scene, depth first
+  bool meshQuantization_ = false;           // KHR_mesh_quantization used: more attribute formats allowed
+  std::vector<int> drawOrder_;              // nodes of the displayed scene, depth first
   std::vector<std::vector<std::uint32_t>> trianglesByMaterial_;
   size_t triangleCount_ = 0;
   int defaultMaterial_ = -1;       // slot of the added default material, -1 if none is needed yet

@@ -9,13 +9,12 @@
 // SceneLoadError ("<file>: <problem>") rather than handing on bad data.
 
 #include <cstdint>
-#include <limits>
 #include <filesystem>
+#include <glm/glm.hpp>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 namespace lgh {
 
@@ -63,19 +62,19 @@ enum class LightType { Point, Spot, Directional };
 struct PunctualLight {  // KHR_lights_punctual, in scene space
   std::string name;
   LightType type = LightType::Point;
-  glm::vec3 position{0.0f};         // point, spot
-  glm::vec3 direction{0, 0, -1};    // spot, directional: unit direction the light travels (node's -Z)
-  glm::vec3 intensity{1.0f};        // color * intensity: candela (W/sr) for point/spot, lux (W/m^2) for directional
-  float range = 0.0f;               // 0 = infinite
+  glm::vec3 position{0.0f};       // point, spot
+  glm::vec3 direction{0, 0, -1};  // spot, directional: unit direction the light travels (node's -Z)
+  glm::vec3 intensity{1.0f};      // color * intensity: candela (W/sr) for point/spot, lux (W/m^2) for directional
+  float range = 0.0f;             // 0 = infinite
   float innerConeCos = 1.0f, outerConeCos = 0.70710678f;  // spot only: cos of the cone angles
 };
 
 struct Camera {
   std::string name;
   glm::vec3 position{0.0f};
-  glm::mat3 orientation{1.0f};  // columns: right, up, back (camera looks along -column 2), orthonormal
-  float yfov = 0.7853982f;      // radians
-  float aspectRatio = 0.0f;     // as stored in the file; 0 = unspecified (the image's aspect is used)
+  glm::mat3 orientation{1.0f};          // columns: right, up, back (camera looks along -column 2), orthonormal
+  float yfov = 0.7853982f;              // radians
+  float aspectRatio = 0.0f;             // as stored in the file; 0 = unspecified (the image's aspect is used)
   float znear = 0.01f, zfar = 1000.0f;  // a file's camera without zfar gets FLT_MAX: an infinite projection
 };
 
@@ -85,21 +84,21 @@ struct MaterialRange {  // triangles [firstTriangle, firstTriangle + triangleCou
 
 struct Scene {
   std::filesystem::path source;
-  glm::dvec3 origin{0.0};                 // world position of scene space's origin: world = origin + p
-  std::vector<glm::vec3> positions;       // scene space (see origin)
-  std::vector<glm::vec3> normals;         // unit; generated (flat) where the file has none
-  std::vector<glm::vec2> texcoords;       // TEXCOORD_0, (0,0) where the file has none
-  std::vector<glm::vec2> texcoords1;      // TEXCOORD_1, (0,0) where the file has none
-  std::vector<glm::vec4> colors;          // COLOR_0 (linear RGBA), white where the file has none
-  std::vector<std::uint32_t> indices;     // 3 per triangle, triangles grouped by material (see materialRanges)
+  glm::dvec3 origin{0.0};                        // world position of scene space's origin: world = origin + p
+  std::vector<glm::vec3> positions;              // scene space (see origin)
+  std::vector<glm::vec3> normals;                // unit; generated (flat) where the file has none
+  std::vector<glm::vec2> texcoords;              // TEXCOORD_0, (0,0) where the file has none
+  std::vector<glm::vec2> texcoords1;             // TEXCOORD_1, (0,0) where the file has none
+  std::vector<glm::vec4> colors;                 // COLOR_0 (linear RGBA), white where the file has none
+  std::vector<std::uint32_t> indices;            // 3 per triangle, triangles grouped by material (see materialRanges)
   std::vector<std::uint32_t> triangleMaterials;  // one per triangle
   std::vector<MaterialRange> materialRanges;
-  std::vector<Material> materials;        // at least one (a default grey material if the file has none)
+  std::vector<Material> materials;  // at least one (a default grey material if the file has none)
   std::vector<Texture> textures;
   std::vector<PunctualLight> lights;
   std::vector<Camera> cameras;
-  Bounds bounds;                          // of all triangle vertices, scene space
-  std::vector<std::string> warnings;      // recoverable problems (missing texture, skipped point primitives, ...)
+  Bounds bounds;                      // of all triangle vertices, scene space
+  std::vector<std::string> warnings;  // recoverable problems (missing texture, skipped point primitives, ...)
 
   size_t triangleCount() const { return indices.size() / 3; }
   // The camera named `name`; throws SceneLoadError listing the available names if there is none.

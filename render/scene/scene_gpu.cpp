@@ -14,7 +14,7 @@ namespace {
 gpu::GpuPunctualLight toGpu(const PunctualLight& light) {
   gpu::GpuPunctualLight g{};
   g.position = light.position;
-  g.type = light.type == LightType::Point ? gpu::kLightPoint
+  g.type = light.type == LightType::Point  ? gpu::kLightPoint
            : light.type == LightType::Spot ? gpu::kLightSpot
                                            : gpu::kLightDirectional;
   g.direction = light.direction;
@@ -68,7 +68,8 @@ void packTexels(const Scene& scene, std::vector<gpu::GpuTextureInfo>& infos, std
     infos.push_back({std::uint32_t(texels.size()), w, h, 0});
     for (std::uint32_t y = 0; y < h; ++y)
       for (std::uint32_t x = 0; x < w; ++x) {
-        const std::uint8_t* p = &t.rgba[4 * (size_t(y * std::uint32_t(step)) * size_t(t.width) + x * std::uint32_t(step))];
+        const std::uint8_t* p =
+            &t.rgba[4 * (size_t(y * std::uint32_t(step)) * size_t(t.width) + x * std::uint32_t(step))];
         texels.push_back(std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 |
                          std::uint32_t(p[3]) << 24);
       }

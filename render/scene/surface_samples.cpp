@@ -27,8 +27,8 @@ std::vector<Light> sampleSurfaceLights(const Scene& scene, size_t count, std::ui
   const bool hasVertexNormals = scene.normals.size() == scene.positions.size();
   std::vector<Light> lights(count);
   for (Light& light : lights) {
-    const size_t t = size_t(std::upper_bound(cumulativeArea.begin(), cumulativeArea.end(), u(rng) * total) -
-                            cumulativeArea.begin());
+    const size_t t =
+        size_t(std::upper_bound(cumulativeArea.begin(), cumulativeArea.end(), u(rng) * total) - cumulativeArea.begin());
     const size_t triangle = std::min(t, cumulativeArea.size() - 1);  // guards u * total rounding up to total
     // Uniform point on the triangle: fold the unit square's upper half back onto the lower one.
     double s = u(rng), r = u(rng);
@@ -39,8 +39,8 @@ std::vector<Light> sampleSurfaceLights(const Scene& scene, size_t count, std::ui
 
     glm::vec3 normal = glm::normalize(edgeCross(triangle));
     if (hasVertexNormals) {
-      const glm::vec3 vertexNormals = scene.normals[corner(triangle, 0)] + scene.normals[corner(triangle, 1)] +
-                                      scene.normals[corner(triangle, 2)];
+      const glm::vec3 vertexNormals =
+          scene.normals[corner(triangle, 0)] + scene.normals[corner(triangle, 1)] + scene.normals[corner(triangle, 2)];
       if (glm::dot(normal, vertexNormals) < 0) normal = -normal;
     }
     light.normal = normal;

@@ -1,9 +1,9 @@
 // What the renderer rebuilds between frames (render/light_builds.h), without a GPU: S0 when the
 // lights or their settings change, the hierarchy when S0 or the level setting changes and only while
 // a frame draws it.
-#include <gtest/gtest.h>
-
 #include "render/light_builds.h"
+
+#include <gtest/gtest.h>
 
 namespace lgh {
 namespace {
@@ -31,10 +31,11 @@ TEST(LightBuilds, LightSettingsAndEditsRebuildBoth) {
   LightBuilds builds;
   InputLightKey key;
   frame(builds, key, 0, true);
-  for (auto change : {+[](InputLightKey& k) { k.settings.vpls += 1; }, +[](InputLightKey& k) { k.settings.bounces = 3; },
-                      +[](InputLightKey& k) { k.settings.seed = 7; }, +[](InputLightKey& k) { k.settings.emitterSamples = 5; },
-                      +[](InputLightKey& k) { k.pointLightsToS0 = !k.pointLightsToS0; },
-                      +[](InputLightKey& k) { ++k.lightsVersion; }}) {
+  for (auto change :
+       {+[](InputLightKey& k) { k.settings.vpls += 1; }, +[](InputLightKey& k) { k.settings.bounces = 3; },
+        +[](InputLightKey& k) { k.settings.seed = 7; }, +[](InputLightKey& k) { k.settings.emitterSamples = 5; },
+        +[](InputLightKey& k) { k.pointLightsToS0 = !k.pointLightsToS0; },
+        +[](InputLightKey& k) { ++k.lightsVersion; }}) {
     change(key);
     const LightBuilds::Plan p = frame(builds, key, 0, true);
     EXPECT_TRUE(p.inputLights);

@@ -2,14 +2,15 @@
 // compiled here as C++: roles and radii against the double-precision library (lgh/blending.h), light
 // decoding against the stored fields, and the light volume's screen bound against projected points of
 // the sphere (it must contain all of them, and touch them: conservative and tight).
-#include <cmath>
-#include <random>
+#include "shared/light_levels.h"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <random>
+
 #include "lgh/blending.h"
-#include "shared/light_levels.h"
 
 namespace lgh {
 namespace {
@@ -31,13 +32,15 @@ TEST(LightLevels, RadiusIsAlphaTimesCellSize) {
   const float alpha = 1.5f, H = 12.0f;
   for (unsigned levels = 1; levels <= 11; ++levels)
     for (unsigned level = 0; level <= levels; ++level)
-      EXPECT_FLOAT_EQ(gpu::levelRadius(alpha, H, level, levels), float(alpha * std::ldexp(double(H), int(level) - int(levels))));
+      EXPECT_FLOAT_EQ(gpu::levelRadius(alpha, H, level, levels),
+                      float(alpha * std::ldexp(double(H), int(level) - int(levels))));
   // R_{l+1} = 2 R_l: the blending bands of neighbouring levels meet.
   EXPECT_FLOAT_EQ(gpu::levelRadius(1.0f, 1.0f, 3, 5), 2.0f * gpu::levelRadius(1.0f, 1.0f, 2, 5));
 }
 
 TEST(LightLevels, DecodesInputAndGridLights) {
-  gpu::GpuLight vpl{glm::vec3(1, 2, 3), gpu::octEncode(glm::normalize(glm::vec3(0, 1, 1))), glm::vec3(4, 5, 6), gpu::kLightOriented};
+  gpu::GpuLight vpl{glm::vec3(1, 2, 3), gpu::octEncode(glm::normalize(glm::vec3(0, 1, 1))), glm::vec3(4, 5, 6),
+                    gpu::kLightOriented};
   const gpu::ShadedLight s = gpu::decodeInputLight(vpl);
   EXPECT_EQ(s.position, vpl.position);
   EXPECT_EQ(s.intensity, vpl.intensity);
@@ -74,7 +77,8 @@ TEST(LightLevels, SphereBoundContainsAndTouchesTheProjectedSphere) {
     const float n = 0.1f, s = 0.1f * (1.2f + u(rng));
     const glm::mat4 projection = glm::frustum(-s + 0.03f * u(rng), s, -s * 0.6f, s * 0.6f + 0.02f * u(rng), n, 100.0f);
     const glm::mat4 m = projection * view;
-    const glm::vec3 c = eye + glm::vec3(glm::inverse(view) * glm::vec4(2 * u(rng), 2 * u(rng), -3.0f + 2.5f * u(rng), 0.0f));
+    const glm::vec3 c =
+        eye + glm::vec3(glm::inverse(view) * glm::vec4(2 * u(rng), 2 * u(rng), -3.0f + 2.5f * u(rng), 0.0f));
     const float r = 0.05f + 1.5f * std::abs(u(rng));
     glm::vec4 bounds(0.0f), diagonals(0.0f);
     const glm::vec2 w = gpu::sphereClipWRange(m, c, r);

@@ -6,11 +6,12 @@
 //    cases, and the shadowed sums agree with BruteForcePass's shadowed variant.
 //  * A pixel subset computes exactly the full reference's values there; the cache returns what was
 //    stored, and only for the same description.
+#include "bench/reference.h"
+
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 
-#include "bench/reference.h"
 #include "gl_test_env.h"
 #include "gltf_writer.h"
 #include "lgh/shading.h"
@@ -42,7 +43,11 @@ struct CornellFrame {
     s.shadows.samples = 0;
     return s;
   }
-  CornellFrame() : scene(loadScene(sourceDir() / "data/cornell_box.gltf")), gpu(scene), settings(small()), renderer(gpu, settings) {
+  CornellFrame()
+      : scene(loadScene(sourceDir() / "data/cornell_box.gltf")),
+        gpu(scene),
+        settings(small()),
+        renderer(gpu, settings) {
     renderer.render(makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height));
     input.width = settings.image.width;
     input.height = settings.image.height;
@@ -55,14 +60,14 @@ struct CornellFrame {
   ImageRGBA glBruteForce(bool shadowed) const {
     static BruteForcePass pass;
     gl::Texture2D out(settings.image.width, settings.image.height, GL_RGBA32F);
-    pass.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, renderer.clampDistance(),
-                 out, shadowed ? &gpu : nullptr);
+    pass.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
+                 renderer.clampDistance(), out, shadowed ? &gpu : nullptr);
     return fromGLRows(settings.image.width, settings.image.height, out.readRGBA());
   }
 };
 
-reference::ReferenceImage computeQuietly(const reference::OcclusionScene& occlusion, const reference::ReferenceInput& input,
-                                         double fraction = 1.0) {
+reference::ReferenceImage computeQuietly(const reference::OcclusionScene& occlusion,
+                                         const reference::ReferenceInput& input, double fraction = 1.0) {
   reference::ReferenceOptions o;
   o.pixelFraction = fraction;
   o.progress = false;
@@ -70,8 +75,8 @@ reference::ReferenceImage computeQuietly(const reference::OcclusionScene& occlus
 }
 
 struct Agreement {
-  double maxRelative = 0;  // max over pixels and channels of |a - r| / (|r| + 1e-3 mean)
-  double relativeRmse = 0; // luminance, as the sweep measures errors
+  double maxRelative = 0;   // max over pixels and channels of |a - r| / (|r| + 1e-3 mean)
+  double relativeRmse = 0;  // luminance, as the sweep measures errors
 };
 
 Agreement compare(const ImageRGBA& gl, const reference::ReferenceImage& ref, const std::vector<glm::dvec3>& values) {
@@ -83,7 +88,8 @@ Agreement compare(const ImageRGBA& gl, const reference::ReferenceImage& ref, con
   for (size_t k = 0; k < ref.pixels.size(); ++k) {
     const glm::vec4& g = gl.pixels[ref.pixels[k]];
     for (int c = 0; c < 3; ++c)
-      a.maxRelative = std::max(a.maxRelative, std::abs(double(g[c]) - values[k][c]) / (std::abs(values[k][c]) + 1e-3 * mean));
+      a.maxRelative =
+          std::max(a.maxRelative, std::abs(double(g[c]) - values[k][c]) / (std::abs(values[k][c]) + 1e-3 * mean));
     const double d = luminance(g) - luminance(values[k]);
     squared += d * d;
     norm += luminance(values[k]) * luminance(values[k]);
@@ -111,8 +117,9 @@ TEST_F(ReferenceTest, UnshadowedSumMatchesGlBruteForce) {
   f.renderer.setSettings(s);
   f.renderer.render(makeCameraView(resolveCamera(f.scene, s), s.image.width, s.image.height));
   const Agreement raster = compare(f.renderer.readImage(Aov::Irradiance), ref, ref.unshadowed);
-  std::printf("  %zu lights: compute brute force max rel. %.2e, rel. RMSE %.2e; rasterized max rel. %.2e, rel. RMSE %.2e\n",
-              f.input.lights.size(), compute.maxRelative, compute.relativeRmse, raster.maxRelative, raster.relativeRmse);
+  std::printf(
+      "  %zu lights: compute brute force max rel. %.2e, rel. RMSE %.2e; rasterized max rel. %.2e, rel. RMSE %.2e\n",
+      f.input.lights.size(), compute.maxRelative, compute.relativeRmse, raster.maxRelative, raster.relativeRmse);
   EXPECT_LT(compute.maxRelative, 1e-4);
   EXPECT_LT(raster.maxRelative, 1e-4);
   EXPECT_LT(compute.relativeRmse, 1e-5);
@@ -139,8 +146,8 @@ TEST_F(ReferenceTest, VisibilityAgreesWithGpuBvh) {
     const glm::vec3 p(f.input.position[i]), n(f.input.normal[i]);
     const glm::dvec3 x(p), nx(n);
     for (const Light& l : f.input.lights) {
-      const glm::dvec3 e = lightContribution(glm::dvec3(l.position), glm::dvec3(l.intensity), unitNormal(l), omniFraction(l),
-                                             x, &nx, f.input.clampDistance);
+      const glm::dvec3 e = lightContribution(glm::dvec3(l.position), glm::dvec3(l.intensity), unitNormal(l),
+                                             omniFraction(l), x, &nx, f.input.clampDistance);
       reference::OcclusionScene::Ray ray;
       if (e == glm::dvec3(0.0) || !reference::shadowRay(p, n, l.position, ray)) continue;
       rays.push_back(ray);
@@ -165,8 +172,8 @@ TEST_F(ReferenceTest, VisibilityAgreesWithGpuBvh) {
     blocked += cpu[i];
     differ += (gpuHits[i].anyHit != 0) != (cpu[i] != 0) ? 1 : 0;
   }
-  std::printf("  %zu shadow rays, %zu blocked (Embree); %zu differ from the GPU BVH (%.2e)\n", rays.size(), blocked, differ,
-              double(differ) / double(rays.size()));
+  std::printf("  %zu shadow rays, %zu blocked (Embree); %zu differ from the GPU BVH (%.2e)\n", rays.size(), blocked,
+              differ, double(differ) / double(rays.size()));
   EXPECT_GT(blocked, rays.size() / 100) << "the scene should cast some indirect shadows";
   EXPECT_LT(blocked, rays.size() * 99 / 100);
   EXPECT_LE(double(differ), 1e-3 * double(rays.size()));

@@ -6,6 +6,8 @@
 // at distances equal within kTieEpsilon (relative). The GLSL compiler may fuse multiply-adds that
 // the C++ compiler does not, so exact edge cases can fall either way, and the same triangle's hit
 // distance may differ in the last bits (kSameTriangleTEpsilon, relative). Any other difference fails.
+#include "render/scene/bvh.h"
+
 #include <algorithm>
 #include <random>
 #include <thread>
@@ -13,7 +15,6 @@
 #include "gl_test_env.h"
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
-#include "render/scene/bvh.h"
 #include "render/scene/scene.h"
 #include "shared/bindings.h"
 #include "shared/ray_triangle.h"
@@ -50,7 +51,8 @@ Mesh randomSoup(size_t count, std::uint32_t seed) {
   for (int q = 0; q < 20; ++q) {
     const float y = u(rng);
     const std::uint32_t base = std::uint32_t(mesh.positions.size());
-    mesh.positions.insert(mesh.positions.end(), {{-0.5f, y, -0.5f}, {0.5f, y, -0.5f}, {0.5f, y, 0.5f}, {-0.5f, y, 0.5f}});
+    mesh.positions.insert(mesh.positions.end(),
+                          {{-0.5f, y, -0.5f}, {0.5f, y, -0.5f}, {0.5f, y, 0.5f}, {-0.5f, y, 0.5f}});
     mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   }
   mesh.positions.insert(mesh.positions.end(), {{0, 0, 0}, {0, 0, 0}, {1, 1, 1}});
@@ -73,12 +75,14 @@ BruteForceHit bruteForce(const Mesh& mesh, const TestRay& ray) {
   float bestT = tMax;
   for (size_t i = 0; i < mesh.indices.size() / 3; ++i) {
     const glm::vec3 v0 = mesh.positions[mesh.indices[3 * i]];
-    const glm::vec3 e1 = mesh.positions[mesh.indices[3 * i + 1]] - v0, e2 = mesh.positions[mesh.indices[3 * i + 2]] - v0;
+    const glm::vec3 e1 = mesh.positions[mesh.indices[3 * i + 1]] - v0,
+                    e2 = mesh.positions[mesh.indices[3 * i + 2]] - v0;
     // A slightly grown triangle tells whether rounding could flip this triangle's outcome.
     glm::vec3 hit;
     const glm::vec3 grow = kEdgeEpsilon * (e1 + e2);
-    const bool hitGrown = gpu::intersectTriangle(o, d, v0 - grow, e1 * (1 + 3 * kEdgeEpsilon), e2 * (1 + 3 * kEdgeEpsilon),
-                                                 tMin * (1 - kTieEpsilon), tMax * (1 + kTieEpsilon), hit);
+    const bool hitGrown =
+        gpu::intersectTriangle(o, d, v0 - grow, e1 * (1 + 3 * kEdgeEpsilon), e2 * (1 + 3 * kEdgeEpsilon),
+                               tMin * (1 - kTieEpsilon), tMax * (1 + kTieEpsilon), hit);
     if (!hitGrown) continue;
     const float tGrown = hit.x;
     const bool hitExact = gpu::intersectTriangle(o, d, v0, e1, e2, tMin, tMax, hit);

@@ -93,8 +93,7 @@ TEST_P(BackendTest, CreatesContextAndRunsCompute) {
   expectScaleKernelWorks(100);
 }
 
-INSTANTIATE_TEST_SUITE_P(Headless, BackendTest,
-                         ::testing::Values(gl::Backend::EglSurfaceless, gl::Backend::EglDevice),
+INSTANTIATE_TEST_SUITE_P(Headless, BackendTest, ::testing::Values(gl::Backend::EglSurfaceless, gl::Backend::EglDevice),
                          [](const auto& info) {
                            std::string name = gl::backendName(info.param);
                            name.erase(std::remove(name.begin(), name.end(), '-'), name.end());

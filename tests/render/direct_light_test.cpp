@@ -103,8 +103,8 @@ TEST_F(DirectLightTest, PointLightOverPlaneMatchesClosedForm) {
 TEST_F(DirectLightTest, SpotLightConeFollowsGltfFalloff) {
   const double intensity = 30.0, inner = 0.3, outer = 0.6;
   const glm::quat down = glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0));  // local -Z to world -Y
-  const Rendered r = render(writePlaneScene(dir, LightDesc{}.ofType("spot").withIntensity(intensity).withCone(inner, outer),
-                                            down, false));
+  const Rendered r = render(
+      writePlaneScene(dir, LightDesc{}.ofType("spot").withIntensity(intensity).withCone(inner, outer), down, false));
   size_t inside = 0, ramp = 0, outside = 0;
   for (int y = 0; y < r.position.height; ++y)
     for (int x = 0; x < r.position.width; ++x) {

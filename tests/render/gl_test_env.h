@@ -1,9 +1,9 @@
 #pragma once
 // Shared set-up for GL tests: the process-wide debug context and paths to test data.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
-
-#include <gtest/gtest.h>
 
 #include "render/gl/context.h"
 #include "render/gl/debug.h"
@@ -24,9 +24,9 @@ inline std::filesystem::path sourceDir() { return LGH_SOURCE_DIR; }
 inline std::filesystem::path sharedScenesDir() { return LGH_SHARED_SCENES_DIR; }
 
 // Path to a scene in ../shared/scenes, or GTEST_SKIP() with the reason when that folder is absent.
-#define LGH_REQUIRE_SHARED_SCENE(var, relativePath)                                                        \
-  const std::filesystem::path var = ::lgh::test::sharedScenesDir() / (relativePath);                     \
-  if (!std::filesystem::exists(var))                                                                      \
-    GTEST_SKIP() << "needs " << var.string() << " (../shared/scenes is not beside this checkout)"
+#define LGH_REQUIRE_SHARED_SCENE(var, relativePath)                                  \
+  const std::filesystem::path var = ::lgh::test::sharedScenesDir() / (relativePath); \
+  if (!std::filesystem::exists(var))                                                 \
+  GTEST_SKIP() << "needs " << var.string() << " (../shared/scenes is not beside this checkout)"
 
 }  // namespace lgh::test

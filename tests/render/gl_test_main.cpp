@@ -1,9 +1,9 @@
 // GoogleTest main for GL tests: one debug GL context for the whole process (creating one costs
 // 12–34 ms and some drivers dislike many), chosen by LGH_TEST_BACKEND (default: auto).
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <iostream>
-
-#include <gtest/gtest.h>
 
 #include "gl_test_env.h"
 

@@ -203,7 +203,8 @@ int GltfWriter::addMaterial(const MaterialDesc& m) {
     if (m.baseColorTexCoord != 0)
       material["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = m.baseColorTexCoord;
     if (!m.baseColorTransform.is_null()) {
-      material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] = m.baseColorTransform;
+      material["pbrMetallicRoughness"]["baseColorTexture"]["extensions"]["KHR_texture_transform"] =
+          m.baseColorTransform;
       useExtension("KHR_texture_transform");
     }
   }

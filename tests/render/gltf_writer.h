@@ -62,10 +62,10 @@ struct MaterialDesc {
   int baseColorTexture = -1;       // texture index
   int emissiveTexture = -1;
   int baseColorTexCoord = 0;
-  std::string alphaMode;                 // empty: omitted (OPAQUE)
-  double alphaCutoff = -1.0;             // < 0: omitted (0.5)
+  std::string alphaMode;      // empty: omitted (OPAQUE)
+  double alphaCutoff = -1.0;  // < 0: omitted (0.5)
   bool doubleSided = false;
-  nlohmann::json baseColorTransform;     // KHR_texture_transform object on the base colour texture; null: none
+  nlohmann::json baseColorTransform;  // KHR_texture_transform object on the base colour texture; null: none
 
   MaterialDesc& named(std::string n) {
     name = std::move(n);
@@ -171,7 +171,7 @@ struct NodeDesc {
   std::string name;
   int mesh = -1, camera = -1, light = -1;
   std::vector<int> children;
-  glm::dvec3 translation{0.0};  // double: tests place scenes far from the origin
+  glm::dvec3 translation{0.0};                 // double: tests place scenes far from the origin
   glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // (w, x, y, z)
   glm::vec3 scale{1.0f};
   std::vector<double> matrix;  // 16 numbers, column-major: written instead of TRS when set

@@ -17,7 +17,9 @@ class LightEditTest : public GLTest {
     settings.inputLights.vpls = 3000;
     settings.shadows.samples = 0;  // no per-frame shadow sampling: frames of the same lights are equal
   }
-  CameraView view() const { return makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height); }
+  CameraView view() const {
+    return makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
+  }
 
   Scene scene;
   RenderSettings settings;

@@ -71,7 +71,8 @@ TEST_F(LightPassTest, RasterizedBruteForceEqualsComputeSum) {
   ASSERT_GT(scale, 0.0);
   for (size_t i = 0; i < exact.pixels.size(); ++i)
     for (int k = 0; k < 3; ++k)
-      ASSERT_NEAR(raster.irradiance.pixels[i][k], exact.pixels[i][k], 1e-4 * (exact.pixels[i][k] + scale)) << "pixel " << i;
+      ASSERT_NEAR(raster.irradiance.pixels[i][k], exact.pixels[i][k], 1e-4 * (exact.pixels[i][k] + scale))
+          << "pixel " << i;
   // Every light's full-screen triangle covers every pixel exactly once.
   EXPECT_DOUBLE_EQ(raster.stats.lights.rasterizedPerPixel, double(renderer.inputLights().count));
   EXPECT_EQ(raster.stats.lights.maxRasterized, unsigned(renderer.inputLights().count));
@@ -97,7 +98,8 @@ TEST_F(LightPassTest, ComputeSumCountsEveryLight) {
     if (position.pixels[i].w == 0.0f) continue;
     const glm::dvec3 x(position.pixels[i]), n(normal.pixels[i]);
     const glm::dvec3 expected = evaluateExact(lights, x, &n, options);
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(exact.pixels[i][k], expected[k], 1e-4 * expected[k] + 1e-9) << "pixel " << i;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(exact.pixels[i][k], expected[k], 1e-4 * expected[k] + 1e-9) << "pixel " << i;
     ++checked;
   }
   EXPECT_GT(checked, 20);
@@ -212,9 +214,10 @@ TEST_F(LightPassTest, InterleavingPreservesEnergy) {
     renderer.setSettings(settings);
     const Frame frame = renderIrradiance(renderer, s.scene);
     const double mean = meanLuminance(frame.irradiance);
-    std::printf("  interleave %dx%d: mean %.6g vs %.6g (1x1), relative RMSE vs 1x1 %.4f, fragments/pixel %.1f vs %.1f\n",
-                n, n, mean, referenceMean, relativeRmse(frame.irradiance, reference.irradiance),
-                frame.stats.lights.rasterizedPerPixel, reference.stats.lights.rasterizedPerPixel);
+    std::printf(
+        "  interleave %dx%d: mean %.6g vs %.6g (1x1), relative RMSE vs 1x1 %.4f, fragments/pixel %.1f vs %.1f\n", n, n,
+        mean, referenceMean, relativeRmse(frame.irradiance, reference.irradiance),
+        frame.stats.lights.rasterizedPerPixel, reference.stats.lights.rasterizedPerPixel);
     EXPECT_NEAR(mean, referenceMean, 0.01 * referenceMean) << n << "x" << n;
   }
 }
@@ -256,7 +259,8 @@ double maxRelativeDifference(const ImageRGBA& a, const ImageRGBA& b) {
   double worst = 0;
   for (size_t i = 0; i < a.pixels.size(); ++i)
     for (int k = 0; k < 3; ++k)
-      worst = std::max(worst, std::abs(double(a.pixels[i][k]) - b.pixels[i][k]) / std::max(std::abs(double(b.pixels[i][k])), floor));
+      worst = std::max(
+          worst, std::abs(double(a.pixels[i][k]) - b.pixels[i][k]) / std::max(std::abs(double(b.pixels[i][k])), floor));
   return worst;
 }
 
@@ -287,10 +291,11 @@ void expectCullingKeepsTheImage(const SceneOnGpu& s, const CullingCase& c, int v
   const ImageRGBA culledImage = renderer.readImage(Aov::Irradiance);
   ASSERT_GT(meanLuminance(cubeImage), 0.0);
   const double difference = maxRelativeDifference(culledImage, cubeImage);
-  std::printf("  %s: fragments/px %.1f (cubes) -> %.1f (culled), shaded %.2f -> %.2f, efficiency %.2f -> %.2f, "
-              "max relative difference %.2g\n",
-              c.name, cubes.lights.rasterizedPerPixel, culled.lights.rasterizedPerPixel, cubes.lights.shadedPerPixel,
-              culled.lights.shadedPerPixel, cubes.lights.efficiency(), culled.lights.efficiency(), difference);
+  std::printf(
+      "  %s: fragments/px %.1f (cubes) -> %.1f (culled), shaded %.2f -> %.2f, efficiency %.2f -> %.2f, "
+      "max relative difference %.2g\n",
+      c.name, cubes.lights.rasterizedPerPixel, culled.lights.rasterizedPerPixel, cubes.lights.shadedPerPixel,
+      culled.lights.shadedPerPixel, cubes.lights.efficiency(), culled.lights.efficiency(), difference);
   EXPECT_LE(difference, 1e-4);
   EXPECT_NEAR(culled.lights.shadedPerPixel, cubes.lights.shadedPerPixel, 1e-6 * cubes.lights.shadedPerPixel);
   EXPECT_LT(culled.lights.rasterizedPerPixel, cubes.lights.rasterizedPerPixel);
@@ -299,17 +304,18 @@ void expectCullingKeepsTheImage(const SceneOnGpu& s, const CullingCase& c, int v
 
 TEST_F(LightPassTest, CulledVolumesShadeWhatCubesShade) {
   SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
-  for (const CullingCase& c : {CullingCase{"1x1 from S1", 1, 1, 1.0f, false}, CullingCase{"4x4 from S1", 4, 1, 1.0f, false},
-                               CullingCase{"2x2 from S0", 2, 0, 1.0f, false},
-                               CullingCase{"camera inside, alpha 4", 1, 1, 4.0f, true},
-                               CullingCase{"camera inside, 4x4 from S0", 4, 0, 2.0f, true}})
+  for (const CullingCase& c :
+       {CullingCase{"1x1 from S1", 1, 1, 1.0f, false}, CullingCase{"4x4 from S1", 4, 1, 1.0f, false},
+        CullingCase{"2x2 from S0", 2, 0, 1.0f, false}, CullingCase{"camera inside, alpha 4", 1, 1, 4.0f, true},
+        CullingCase{"camera inside, 4x4 from S0", 4, 0, 2.0f, true}})
     expectCullingKeepsTheImage(s, c, 20000);
 }
 
 TEST_F(LightPassTest, CulledVolumesShadeWhatCubesShadeOnSponza) {
   LGH_REQUIRE_SHARED_SCENE(path, "sponza_sun/sponza_sun.gltf");
   SceneOnGpu s(path);
-  for (const CullingCase& c : {CullingCase{"Sponza 1x1", 1, 1, 1.0f, false}, CullingCase{"Sponza 4x4", 4, 1, 1.0f, false}})
+  for (const CullingCase& c :
+       {CullingCase{"Sponza 1x1", 1, 1, 1.0f, false}, CullingCase{"Sponza 4x4", 4, 1, 1.0f, false}})
     expectCullingKeepsTheImage(s, c, 20000);
 }
 
@@ -325,7 +331,8 @@ TEST_F(LightPassTest, CullingLeavesShadowSelectionUnchanged) {
     settings.shadows.samples = 4;
     settings.shadows.skipFinest = false;  // S1 lights are the ones culling touches most
     settings.lightPass.interleave = n;
-    const CameraView view = makeCameraView(resolveCamera(s.scene, settings), settings.image.width, settings.image.height);
+    const CameraView view =
+        makeCameraView(resolveCamera(s.scene, settings), settings.image.width, settings.image.height);
     std::vector<float> totals[2];
     std::vector<GLuint> slots[2];
     for (int culling : {0, 1}) {

@@ -72,8 +72,7 @@ std::vector<MalformedGltf> makeCases() {
       {"asset.version", "3.0", "major version 2"});
   add("AssetVersionMalformed", "PATTERN_MISMATCH", [](Json& d, auto&) { d["asset"]["version"] = "two"; },
       {"asset.version", "'two'", "MAJOR.MINOR"});
-  add(
-      "AssetVersionMissing", "UNDEFINED_PROPERTY (asset.version)", [](Json& d, auto&) { d["asset"].erase("version"); },
+  add("AssetVersionMissing", "UNDEFINED_PROPERTY (asset.version)", [](Json& d, auto&) { d["asset"].erase("version"); },
       {"asset.version is missing"});
   add("PositionShortWithoutQuantization", "MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT",
       [](Json& d, auto&) { attributeAccessor(d, "POSITION")["componentType"] = 5122; },  // SHORT over the float data

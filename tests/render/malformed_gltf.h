@@ -13,7 +13,7 @@ struct MalformedGltf {
   std::string name;  // [A-Za-z0-9_]: also the test's name
   std::string rule;  // the Khronos glTF-Validator issue code (or the spec rule) it breaks
   std::function<std::filesystem::path(const std::filesystem::path& dir)> write;  // writes it into dir
-  std::vector<std::string> expectedWords;  // the message must contain each
+  std::vector<std::string> expectedWords;                                        // the message must contain each
 };
 
 const std::vector<MalformedGltf>& malformedGltfCases();

@@ -5,8 +5,8 @@
 // written by the test (gltf_writer.h); properties are checked per pixel through the G-buffer AOVs.
 #include <cstdio>
 #include <functional>
-#include <limits>
 #include <glm/gtc/quaternion.hpp>
+#include <limits>
 
 #include "gl_test_env.h"
 #include "gltf_writer.h"
@@ -39,7 +39,8 @@ Frame renderScene(const Scene& scene, const RenderSettings& settings = testSetti
   const SceneGpu gpu(scene);
   Renderer renderer(gpu, settings);
   Frame f;
-  f.stats = renderer.render(makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height));
+  f.stats =
+      renderer.render(makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height));
   EXPECT_EQ(f.stats.nonFinitePixels, 0u);
   f.final = renderer.readImage(Aov::Final);
   f.direct = renderer.readImage(Aov::Direct);
@@ -155,8 +156,8 @@ TEST_F(GLTest, ExtremeClipPlanesRenderLikeOrdinaryOnes) {
     GltfWriter w;
     const int grey = w.addMaterial(MaterialDesc{}.withBaseColor({0.7f, 0.7f, 0.7f, 1}));
     const int blue = w.addMaterial(MaterialDesc{}.withBaseColor({0.1f, 0.2f, 0.9f, 1}));
-    w.addNode(NodeDesc{}.withMesh(w.addMesh(
-        {quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, grey), quad({-1, 1e-4f, 1}, {2, 0, 0}, {0, 0, -2}, blue)})));
+    w.addNode(NodeDesc{}.withMesh(
+        w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, grey), quad({-1, 1e-4f, 1}, {2, 0, 0}, {0, 0, -2}, blue)})));
     w.addNode(NodeDesc{}.withLight(w.addLight(LightDesc{}.withIntensity(6))).translated({0, 2, 0}));
     w.addNode(NodeDesc{}
                   .withCamera(w.addCamera(CameraDesc{}.named("eye").withClip(znear, zfar)))
@@ -182,7 +183,8 @@ TEST_F(GLTest, ExtremeClipPlanesRenderLikeOrdinaryOnes) {
   EXPECT_GT(decal, size_t(500));
   const double albedoError = maxAbsDifference(extreme.albedo, ordinary.albedo);
   const double finalError = relativeRmse(extreme.final, ordinary.final);
-  std::printf("[ clip     ] 1e-3/1e7 vs 0.1/100: albedo max diff %.2e, final relative RMSE %.2e\n", albedoError, finalError);
+  std::printf("[ clip     ] 1e-3/1e7 vs 0.1/100: albedo max diff %.2e, final relative RMSE %.2e\n", albedoError,
+              finalError);
   EXPECT_LE(albedoError, 1e-6);
   EXPECT_LE(finalError, 1e-3);
 }
@@ -299,7 +301,8 @@ TEST_F(GLTest, CutOutPartOfAnEmissiveSurfaceEmitsNothing) {
   const auto floorLight = [](const Frame& f) {
     double sum = 0;
     for (size_t i = 0; i < f.position.pixels.size(); ++i)
-      if (f.position.pixels[i].w > 0 && std::abs(f.position.pixels[i].y) < 1e-3f) sum += luminance(f.indirect.pixels[i]);
+      if (f.position.pixels[i].w > 0 && std::abs(f.position.pixels[i].y) < 1e-3f)
+        sum += luminance(f.indirect.pixels[i]);
     return sum;
   };
   const double ratio = floorLight(half) / floorLight(full);

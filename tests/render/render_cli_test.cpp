@@ -1,11 +1,11 @@
 // lgh-render as a user runs it: each backend renders the default scene, outputs are valid images,
 // and every kind of bad input ends with a non-zero exit and a message naming the problem.
 #include <OpenImageIO/imageio.h>
+#include <sys/wait.h>
 
 #include <array>
-#include <glm/gtc/quaternion.hpp>
 #include <cstdio>
-#include <sys/wait.h>
+#include <glm/gtc/quaternion.hpp>
 
 #include "gl_test_env.h"
 #include "gltf_writer.h"
@@ -125,7 +125,8 @@ TEST_F(RenderCliTest, MalformedGltfExitsWithStatusOneNamingFileAndProblem) {
   std::vector<FILE*> pipes;
   for (const MalformedGltf& c : cases) {
     files.push_back(c.write(dir.path()));
-    const std::string command = std::string(LGH_RENDER_EXE) + " " + quoted(files.back()) + " -o " + quoted(out) + " 2>&1";
+    const std::string command =
+        std::string(LGH_RENDER_EXE) + " " + quoted(files.back()) + " -o " + quoted(out) + " 2>&1";
     pipes.push_back(popen(command.c_str(), "r"));
     ASSERT_NE(pipes.back(), nullptr);
   }
@@ -149,8 +150,9 @@ std::filesystem::path writeUnlitScene(const TempDir& dir, const glm::dvec3& offs
   GltfWriter w;
   const int white = w.addMaterial(MaterialDesc{}.withBaseColor({0.8f, 0.8f, 0.8f, 1}));
   const int red = w.addMaterial(MaterialDesc{}.withBaseColor({0.8f, 0.1f, 0.1f, 1}));
-  const int mesh = w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, white), quad({-2, 0, -2}, {4, 0, 0}, {0, 2, 0}, red),
-                              box({0.3f, 0.4f, 0.0f}, {0.4f, 0.4f, 0.4f}, white)});
+  const int mesh =
+      w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, white), quad({-2, 0, -2}, {4, 0, 0}, {0, 2, 0}, red),
+                 box({0.3f, 0.4f, 0.0f}, {0.4f, 0.4f, 0.4f}, white)});
   const int site = w.addNode(NodeDesc{}.withMesh(mesh));
   const int eye = w.addNode(NodeDesc{}
                                 .withCamera(w.addCamera(CameraDesc{}.named("eye")))
@@ -190,7 +192,9 @@ TEST_F(RenderCliTest, SunLightsASceneWithoutLightsWithGlobalIllumination) {
   EXPECT_GT(indirectMean, 0.01 * directMean) << "no indirect light";
   // Half the lux, half the light (direct and indirect scale with the sun).
   const auto halfImage = dir / "half.exr";
-  ASSERT_EQ(runRender(quoted(scene) + " --sun 30,45,4 --width 160 --height 90 --vpls 4000 -o " + quoted(halfImage)).exitCode, 0);
+  ASSERT_EQ(
+      runRender(quoted(scene) + " --sun 30,45,4 --width 160 --height 90 --vpls 4000 -o " + quoted(halfImage)).exitCode,
+      0);
   EXPECT_NEAR(meanValue(halfImage, &w, &h), 0.5 * meanValue(image, &w, &h), 1e-3 * meanValue(image, &w, &h));
 }
 
@@ -200,7 +204,8 @@ TEST_F(RenderCliTest, PointTakesWorldCoordinatesOfASceneFarFromTheOrigin) {
   TempDir far;
   const auto near = dir / "near.exr", away = dir / "away.exr";
   const std::string size = " --width 160 --height 90 --vpls 4000 --shadow-samples 0";
-  ASSERT_EQ(runRender(quoted(writeUnlitScene(dir)) + " --point -0.5,1.5,1,5" + size + " -o " + quoted(near)).exitCode, 0);
+  ASSERT_EQ(runRender(quoted(writeUnlitScene(dir)) + " --point -0.5,1.5,1,5" + size + " -o " + quoted(near)).exitCode,
+            0);
   const RunResult r =
       runRender(quoted(writeUnlitScene(far, {1e5, 0, 0})) + " --point 99999.5,1.5,1,5" + size + " -o " + quoted(away));
   ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -260,7 +260,8 @@ TEST(SceneCornellBox, LoadsAsAuthored) {
 // Is world position p (scene position + Scene::origin) a vertex of the scene?
 bool hasPosition(const Scene& scene, const glm::vec3& p) {
   for (const glm::vec3& q : scene.positions)
-    if (glm::all(glm::lessThanEqual(glm::abs(glm::dvec3(p) - glm::dvec3(q) - scene.origin), glm::dvec3(1e-5)))) return true;
+    if (glm::all(glm::lessThanEqual(glm::abs(glm::dvec3(p) - glm::dvec3(q) - scene.origin), glm::dvec3(1e-5))))
+      return true;
   return false;
 }
 

@@ -3,9 +3,8 @@
 // shadow rays estimate the exact shadowed image better than uniformly picked ones (paper Figs. 7-8).
 #include <cmath>
 #include <cstdio>
-#include <map>
-
 #include <glm/gtc/quaternion.hpp>
+#include <map>
 
 #include "gl_test_env.h"
 #include "gltf_writer.h"
@@ -60,7 +59,7 @@ TEST_F(ShadowTest, SelectionFrequenciesFollowContributions) {
       settings.inputLights.maxDirectLights = 0;  // the 12 point lights are S0
       settings.inputLights.vpls = 0;
       settings.inputLights.emitterSamples = 0;
-      settings.lightPass.bruteForce = true;    // every light at every pixel: selection among all S0 lights
+      settings.lightPass.bruteForce = true;  // every light at every pixel: selection among all S0 lights
       settings.lightPass.interleave = n;
       settings.shadows.samples = k;
       Renderer renderer(gpu, settings);
@@ -75,8 +74,8 @@ TEST_F(ShadowTest, SelectionFrequenciesFollowContributions) {
       std::vector<std::vector<int>> counts(pixels.size(), std::vector<int>(12, 0));
       for (int f = 0; f < frames; ++f) {
         if (f > 0) renderer.render(view);
-        const std::vector<GLuint> slots = renderer.shadowSlots().slots.download<GLuint>(
-            size_t(layout.targetSize().x * layout.targetSize().y * k));
+        const std::vector<GLuint> slots =
+            renderer.shadowSlots().slots.download<GLuint>(size_t(layout.targetSize().x * layout.targetSize().y * k));
         for (size_t p = 0; p < pixels.size(); ++p) {
           const glm::ivec2 q = pixels[p];
           // GL rows are bottom-up: image row y is GL row 7 - y.
@@ -103,8 +102,8 @@ TEST_F(ShadowTest, SelectionFrequenciesFollowContributions) {
         for (int i = 0; i < 12; ++i) {
           if (i % (n * n) != tile) continue;  // lights are dealt to tiles by index within the level
           const gpu::GpuPunctualLight& l = gpu.punctualLights()[size_t(i)];
-          f[size_t(i)] = luminance(lightContribution(glm::dvec3(l.position), glm::dvec3(l.intensity), glm::dvec3(0.0), 1.0,
-                                                      x, &nx, renderer.clampDistance()));
+          f[size_t(i)] = luminance(lightContribution(glm::dvec3(l.position), glm::dvec3(l.intensity), glm::dvec3(0.0),
+                                                     1.0, x, &nx, renderer.clampDistance()));
           total += f[size_t(i)];
         }
         const int samples = frames * k;
@@ -119,8 +118,8 @@ TEST_F(ShadowTest, SelectionFrequenciesFollowContributions) {
         }
         --dof;
       }
-      std::printf("  interleave %dx%d, k = %d: chi-square %.1f with %d dof (1%% critical %.1f)\n", n, n, k, chiSquare, dof,
-                  chiSquareCritical01(dof));
+      std::printf("  interleave %dx%d, k = %d: chi-square %.1f with %d dof (1%% critical %.1f)\n", n, n, k, chiSquare,
+                  dof, chiSquareCritical01(dof));
       EXPECT_LT(chiSquare, chiSquareCritical01(dof));
     }
   }

@@ -39,10 +39,10 @@ TEST(ViewerScript, ParsesEveryCommand) {
 }
 
 TEST(ViewerScript, MistakesNameTheCommand) {
-  for (const char* bad : {"frames=0", "frames=two", "set alpha", "set alfa=2", "set alpha=100", "set vpls=1e3",
-                          "view=shadows", "points=-1", "light=0 position=1,2", "light=0 colour=1,1,1",
-                          "light=0 direction=0,0,0", "screenshot=a.gif", "window-screenshot=a.exr", "window=0x10",
-                          "quit now", "render"}) {
+  for (const char* bad :
+       {"frames=0", "frames=two", "set alpha", "set alfa=2", "set alpha=100", "set vpls=1e3", "view=shadows",
+        "points=-1", "light=0 position=1,2", "light=0 colour=1,1,1", "light=0 direction=0,0,0", "screenshot=a.gif",
+        "window-screenshot=a.exr", "window=0x10", "quit now", "render"}) {
     SCOPED_TRACE(bad);
     try {
       parseScript(std::string("frames=1;") + bad);
@@ -74,7 +74,8 @@ TEST(ViewerScript, SettingsByTheirCliNamesWithinTheirRanges) {
 }
 
 void expectNear(const glm::vec3& a, const glm::vec3& b, float tolerance) {
-  EXPECT_LT(glm::length(a - b), tolerance) << a.x << "," << a.y << "," << a.z << " vs " << b.x << "," << b.y << "," << b.z;
+  EXPECT_LT(glm::length(a - b), tolerance)
+      << a.x << "," << a.y << "," << a.z << " vs " << b.x << "," << b.y << "," << b.z;
 }
 
 Camera sceneCamera() {
@@ -110,7 +111,7 @@ TEST(CameraController, OrbitCirclesTheTargetAndLookKeepsThePosition) {
   expectNear(controller.camera().position, start.position, 1e-4f);
   const glm::mat3 o = controller.camera().orientation;
   EXPECT_NEAR(glm::dot(o[0], glm::vec3(0, 1, 0)), 0.0f, 1e-6f);  // no roll
-  EXPECT_NEAR(glm::determinant(o), 1.0f, 1e-5f);                   // right-handed, orthonormal
+  EXPECT_NEAR(glm::determinant(o), 1.0f, 1e-5f);                 // right-handed, orthonormal
 }
 
 TEST(CameraController, DollyApproachesWithoutPassingAndPanMovesSideways) {

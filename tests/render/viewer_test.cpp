@@ -3,14 +3,14 @@
 // or without OpenGL 4.5 it must say why and exit non-zero. Skips when lgh-viewer is not built
 // (LGH_BUILD_VIEWER=OFF, no Dear ImGui) or, for the Xvfb tests, when xvfb-run is not installed.
 #include <OpenImageIO/imageio.h>
+#include <sys/wait.h>
 
 #include <array>
-#include <glm/gtc/quaternion.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <glm/gtc/quaternion.hpp>
 #include <iostream>
-#include <sys/wait.h>
 
 #include "gl_test_env.h"
 #include "gltf_writer.h"
@@ -26,9 +26,9 @@ constexpr const char* kViewer = nullptr;
 
 #define LGH_REQUIRE_VIEWER() \
   if (!kViewer) GTEST_SKIP() << "lgh-viewer is not built (LGH_BUILD_VIEWER=OFF or Dear ImGui missing)"
-#define LGH_REQUIRE_XVFB()                                              \
-  LGH_REQUIRE_VIEWER();                                                 \
-  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0)         \
+#define LGH_REQUIRE_XVFB()                                      \
+  LGH_REQUIRE_VIEWER();                                         \
+  if (std::system("command -v xvfb-run > /dev/null 2>&1") != 0) \
   GTEST_SKIP() << "xvfb-run is not installed (Debian: apt-get install xvfb xauth)"
 
 struct RunResult {
@@ -47,7 +47,6 @@ RunResult runShell(const std::string& command) {
   result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
 }
-
 
 std::string shellQuoted(const std::string& s) { return "'" + s + "'"; }
 std::string shellQuoted(const std::filesystem::path& p) { return shellQuoted(p.string()); }
@@ -106,12 +105,13 @@ TEST_F(ViewerTest, ScriptedScreenshotsMatchLghRender) {
   const std::string script = "frames=2;set alpha=2;frames=1;screenshot=" + (dir / "shadowed.png").string() +
                              ";set shadow-samples=0;frames=1;screenshot=" + (dir / "unshadowed.png").string() +
                              ";view=direct;screenshot=" + (dir / "direct.png").string() + ";quit";
-  const RunResult viewer = runShell(underXvfb(dir, std::string(kViewer) + " " + common + " -q --script " + shellQuoted(script)));
+  const RunResult viewer =
+      runShell(underXvfb(dir, std::string(kViewer) + " " + common + " -q --script " + shellQuoted(script)));
   ASSERT_EQ(viewer.exitCode, 0) << viewer.output;
 
   const std::string render = std::string(LGH_RENDER_EXE) + " " + common + " --alpha 2 -q ";
-  RunResult r = runShell(render + "-o " + shellQuoted(dir / "render_shadowed.png") + " --aov direct=" +
-                         shellQuoted(dir / "render_direct.png"));
+  RunResult r = runShell(render + "-o " + shellQuoted(dir / "render_shadowed.png") +
+                         " --aov direct=" + shellQuoted(dir / "render_direct.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   r = runShell(render + "--shadow-samples 0 -o " + shellQuoted(dir / "render_unshadowed.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -122,8 +122,8 @@ TEST_F(ViewerTest, ScriptedScreenshotsMatchLghRender) {
   // Without shadow rays a frame is the same computation in both programs: only the display mapping
   // (the viewer's fragment shader, lgh-render's CPU) can round an 8-bit value differently.
   for (const char* name : {"unshadowed", "direct"}) {
-    const Difference d =
-        compare(readImage(dir / (std::string(name) + ".png")), readImage(dir / ("render_" + std::string(name) + ".png")));
+    const Difference d = compare(readImage(dir / (std::string(name) + ".png")),
+                                 readImage(dir / ("render_" + std::string(name) + ".png")));
     std::cout << "[ viewer   ] " << name << ": mean |difference| " << d.mean * 255 << "/255, largest "
               << d.largest * 255 << "/255\n";
     EXPECT_LE(d.largest, 1.0 / 255.0 + 1e-6) << name;
@@ -146,17 +146,20 @@ TEST_F(ViewerTest, SunFromTheCommandLineIsAnEditableLightAndMatchesLghRender) {
   GltfWriter w;
   const int white = w.addMaterial(MaterialDesc{}.withBaseColor({0.8f, 0.8f, 0.8f, 1}));
   const int red = w.addMaterial(MaterialDesc{}.withBaseColor({0.8f, 0.1f, 0.1f, 1}));
-  w.addNode(NodeDesc{}.withMesh(w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, white),
-                                            quad({-2, 0, -2}, {4, 0, 0}, {0, 2, 0}, red),
-                                            box({0.3f, 0.4f, 0.0f}, {0.4f, 0.4f, 0.4f}, white)})));
-  w.addNode(NodeDesc{}.withCamera(w.addCamera(CameraDesc{}.named("eye"))).translated({0, 1.6, 4}).rotated(
-      glm::angleAxis(glm::radians(-20.0f), glm::vec3(1, 0, 0))));
+  w.addNode(NodeDesc{}.withMesh(
+      w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, white), quad({-2, 0, -2}, {4, 0, 0}, {0, 2, 0}, red),
+                 box({0.3f, 0.4f, 0.0f}, {0.4f, 0.4f, 0.4f}, white)})));
+  w.addNode(NodeDesc{}
+                .withCamera(w.addCamera(CameraDesc{}.named("eye")))
+                .translated({0, 1.6, 4})
+                .rotated(glm::angleAxis(glm::radians(-20.0f), glm::vec3(1, 0, 0))));
   const std::filesystem::path scene = w.write(dir / "unlit.gltf");
   const std::string common = shellQuoted(scene) + " --width 160 --height 90 --vpls 2000 --shadow-samples 0 -q";
   // Travel direction of a sun at azimuth 120, elevation 60: -(cos 60 sin 120, sin 60, cos 60 cos 120).
-  const std::string script = "frames=1;screenshot=" + (dir / "sun.png").string() +
-                             ";light=0 direction=-0.4330127019,-0.8660254038,0.25;frames=1;screenshot=" +
-                             (dir / "turned.png").string() + ";quit";
+  const std::string script =
+      "frames=1;screenshot=" + (dir / "sun.png").string() +
+      ";light=0 direction=-0.4330127019,-0.8660254038,0.25;frames=1;screenshot=" + (dir / "turned.png").string() +
+      ";quit";
   const RunResult viewer =
       runShell(underXvfb(dir, std::string(kViewer) + " " + common + " --sun 30,45 --script " + shellQuoted(script)));
   ASSERT_EQ(viewer.exitCode, 0) << viewer.output;
@@ -166,8 +169,8 @@ TEST_F(ViewerTest, SunFromTheCommandLineIsAnEditableLightAndMatchesLghRender) {
   const Image sun = readImage(dir / "sun.png"), turned = readImage(dir / "turned.png");
   const Difference first = compare(sun, readImage(dir / "render_sun.png"));
   const Difference second = compare(turned, readImage(dir / "render_turned.png"));
-  std::cout << "[ viewer   ] --sun: largest |difference| " << first.largest * 255 << "/255; turned in the panel: "
-            << second.largest * 255 << "/255\n";
+  std::cout << "[ viewer   ] --sun: largest |difference| " << first.largest * 255
+            << "/255; turned in the panel: " << second.largest * 255 << "/255\n";
   EXPECT_LE(first.largest, 1.0 / 255.0 + 1e-6);
   EXPECT_LE(second.largest, 2.0 / 255.0 + 1e-6);  // the direction typed to 10 digits
   EXPECT_GT(compare(sun, turned).mean, 2.0 / 255.0) << "turning the sun changed nothing";
@@ -184,8 +187,8 @@ TEST_F(ViewerTest, WithoutDisplaySaysWhatToDo) {
 TEST_F(ViewerTest, BadScriptFailsBeforeTheWindowOpens) {
   LGH_REQUIRE_VIEWER();
   // No display: a mistake in the script must be reported first, not a missing display.
-  const RunResult r = runShell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(kViewer) +
-                               " --script 'frames=1;set alfa=2;quit'");
+  const RunResult r =
+      runShell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(kViewer) + " --script 'frames=1;set alfa=2;quit'");
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("alfa"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("alpha"), std::string::npos) << "the known names should be listed:\n" << r.output;

@@ -3,9 +3,8 @@
 // box the first bounce's flux is compared with an independent CPU Monte Carlo estimate of emitted
 // power x mean albedo at the first hit.
 #include <cstring>
-#include <random>
-
 #include <glm/gtc/quaternion.hpp>
+#include <random>
 
 #include "gl_test_env.h"
 #include "gltf_writer.h"
@@ -43,7 +42,8 @@ TEST_F(VplTest, ClosedBoxFirstBounceCarriesAlbedoTimesPower) {
   for (const char* type : {"point", "spot"}) {
     SCOPED_TRACE(type);
     const glm::quat down = glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0));
-    const Scene scene = loadScene(writeClosedBox(dir, LightDesc{}.ofType(type).withIntensity(5.0).withCone(0.2, 0.9), down));
+    const Scene scene =
+        loadScene(writeClosedBox(dir, LightDesc{}.ofType(type).withIntensity(5.0).withCone(0.2, 0.9), down));
     const SceneGpu gpu(scene);
     VplPass pass(gpu);
     const size_t budget = 100000;
@@ -116,12 +116,14 @@ TEST_F(VplTest, CornellFirstBounceMatchesPowerTimesMeanHitAlbedo) {
   double sum = 0, sumSq = 0;
   const double coneSolidAngle = 2 * kPi * (1 - spot.outerConeCos);
   for (int i = 0; i < samples; ++i) {
-    const double c = 1 - u(rng) * (1 - spot.outerConeCos), s = std::sqrt(std::max(0.0, 1 - c * c)), phi = 2 * kPi * u(rng);
+    const double c = 1 - u(rng) * (1 - spot.outerConeCos), s = std::sqrt(std::max(0.0, 1 - c * c)),
+                 phi = 2 * kPi * u(rng);
     glm::dvec3 t = glm::abs(spot.direction.x) < 0.9f ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     t = glm::normalize(glm::cross(t, glm::dvec3(spot.direction)));
     const glm::dvec3 b = glm::cross(glm::dvec3(spot.direction), t);
     const glm::dvec3 d = s * std::cos(phi) * t + s * std::sin(phi) * b + c * glm::dvec3(spot.direction);
-    const double ramp = std::clamp((c - spot.outerConeCos) / std::max(double(spot.innerConeCos - spot.outerConeCos), 1e-4), 0.0, 1.0);
+    const double ramp =
+        std::clamp((c - spot.outerConeCos) / std::max(double(spot.innerConeCos - spot.outerConeCos), 1e-4), 0.0, 1.0);
     double bestT = 1e30, albedo = 0;
     for (size_t tri = 0; tri < scene.triangleCount(); ++tri) {
       const glm::vec3 v0 = scene.positions[scene.indices[3 * tri]];
