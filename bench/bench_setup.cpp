@@ -68,6 +68,12 @@ RenderBench::RenderBench(const RenderBenchOptions& options)
       gpu_(std::make_unique<SceneGpu>(scene_)),
       renderer_(std::make_unique<BenchRenderer>(*gpu_, options.settings)) {}
 
+std::string sourceRelative(const std::filesystem::path& path) {
+  const std::filesystem::path source = std::filesystem::weakly_canonical(LGH_SOURCE_DIR);
+  const std::filesystem::path relative = std::filesystem::weakly_canonical(path).lexically_relative(source);
+  return relative.empty() ? path.string() : relative.string();
+}
+
 size_t gridLightsOf(const LightStats& lights) {
   size_t n = 0;
   for (size_t l = 1; l < lights.lightsPerLevel.size(); ++l) n += lights.lightsPerLevel[l];

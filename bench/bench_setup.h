@@ -75,6 +75,10 @@ class RenderBench {
   std::unique_ptr<BenchRenderer> renderer_;
 };
 
+// `path` as results files record it: relative to the source tree (a reference scene reads
+// ../shared/scenes/...), so that committed CSV/JSON name no machine's folders.
+std::string sourceRelative(const std::filesystem::path& path);
+
 // Grid lights the light pass drew: every level but S0.
 size_t gridLightsOf(const LightStats& lights);
 // The light pass as a frame pays for it: interleave split + light pass + interleave resolve (ms).

@@ -246,7 +246,7 @@ void writeJson(std::ostream& out, RenderBench& bench, const std::vector<SweepRow
                const std::vector<InterleaveRow>& interleaved, const LightBenchOptions& options) {
   const RenderSettings& settings = options.render.settings;
   nlohmann::json j;
-  j["scene"] = bench.scenePath().string();
+  j["scene"] = sourceRelative(bench.scenePath());
   j["device"] = bench.context().description();
   j["width"] = settings.image.width;
   j["height"] = settings.image.height;

@@ -233,7 +233,7 @@ json measurementJson(const Measurement& m, const json& baseSettings) {
 
 json caseJson(const Case& c) {
   json jc;
-  jc["scene"] = c.scene.path.string();
+  jc["scene"] = sourceRelative(c.scene.path);
   jc["name"] = c.scene.name;
   jc["camera"] = c.scene.camera;
   jc["series"] = c.scaling ? "scaling" : "grid";
@@ -249,11 +249,15 @@ json caseJson(const Case& c) {
     jc["clamp_distance"] = c.clampDistance;
     jc["build_ms"] = significant(c.buildMs);
     const ReferenceInfo& r = c.reference;
-    jc["reference"] = {{"pixels", r.pixels},       {"image_pixels", r.imagePixels},
-                       {"fraction", r.fraction},   {"seconds", significant(r.seconds)},
-                       {"rays", r.rays},           {"pixel_light_pairs", r.pairs},
-                       {"threads", r.threads},     {"from_cache", r.cached},
-                       {"cache_file", r.cacheFile}};
+    jc["reference"] = {{"pixels", r.pixels},
+                       {"image_pixels", r.imagePixels},
+                       {"fraction", r.fraction},
+                       {"seconds", significant(r.seconds)},
+                       {"rays", r.rays},
+                       {"pixel_light_pairs", r.pairs},
+                       {"threads", r.threads},
+                       {"from_cache", r.cached},
+                       {"cache_file", sourceRelative(r.cacheFile)}};
   }
   const json base = jc["base_settings"];
   for (const Measurement& m : c.measurements) jc["measurements"].push_back(measurementJson(m, base));
