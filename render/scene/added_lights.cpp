@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+
+#include "render/text_parse.h"
 
 namespace lgh {
 namespace {
@@ -21,9 +22,8 @@ std::vector<double> parseNumbers(const std::string& spec, const std::string& opt
     return std::invalid_argument(option + " " + spec + ": " + why + " (expected " + form + ")");
   };
   while (std::getline(in, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || end == item.c_str() || *end != '\0') throw bad("'" + item + "' is not a number");
+    double v = 0;
+    if (!parseNumber(item, v)) throw bad("'" + item + "' is not a number");
     if (!std::isfinite(v) || std::abs(v) > 3.0e38) throw bad("'" + item + "' is not a finite float");
     values.push_back(v);
   }
