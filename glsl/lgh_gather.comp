@@ -11,13 +11,12 @@ layout(local_size_x = 64) in;
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Children { GpuGridLight children[]; };
 layout(std430, binding = LGH_BINDING_PASS1) readonly buffer ChildKeys { uint childTableKeys[]; };
 layout(std430, binding = LGH_BINDING_PASS2) readonly buffer ChildSlotIndex { uint childSlotIndex[]; };
-layout(std430, binding = LGH_BINDING_PASS3) buffer Counters { uint counters[]; };
 layout(std430, binding = LGH_BINDING_PASS4) writeonly buffer Output { GpuGridLight gridLights[]; };
 layout(std430, binding = LGH_BINDING_PASS7) readonly buffer CompactKeys { uint compactKeys[]; };
 uniform uint vertexCount;
 uniform uint childVerticesPerAxis;
 uniform uint childTableMask;
-LGH_DEFINE_HASH_TABLE(childTable, childTableKeys, counters, childTableMask)
+LGH_DEFINE_HASH_FIND(childTable, childTableKeys, childTableMask)
 
 void main() {
   uint index = lghGlobalIndex();

@@ -14,8 +14,7 @@ layout(local_size_x = 256) in;
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight lights[]; };
 layout(std430, binding = LGH_BINDING_PASS1) readonly buffer TableKeys { uint tableKeys[]; };
 layout(std430, binding = LGH_BINDING_PASS2) readonly buffer SlotIndex { uint slotIndex[]; };
-layout(std430, binding = LGH_BINDING_PASS3) buffer Counters { uint counters[]; };
-LGH_DEFINE_HASH_TABLE(table, tableKeys, counters, tableMask())
+LGH_DEFINE_HASH_FIND(table, tableKeys, tableMask())
 uniform uint lightCount;
 
 void main() {

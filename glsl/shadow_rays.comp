@@ -1,6 +1,8 @@
 #version 450 core
 // One shadow ray per selected light per pixel (docs/design.md §5): from the pixel's surface to the light,
-// jittered inside its cluster, any-hit through the scene BVH. Writes the raw visibility ratio: the
+// any-hit through the scene BVH. A selected grid light is reached through one of its input lights,
+// drawn by its share of the grid light's importance (shadow_targets.comp), or, as in the paper,
+// through its centre jittered by the cluster's spread (when no targets were drawn). Writes the raw visibility ratio: the
 // mean of the k visibilities (importance selection, each sample already drawn in proportion to its
 // contribution) or the contribution-weighted mean (uniform selection).
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -20,11 +22,14 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight inputLights[]; };
 layout(std430, binding = LGH_BINDING_PASS2) readonly buffer ShadowSlots { uint shadowSlots[]; };
 layout(std430, binding = LGH_BINDING_PASS3) readonly buffer GridLights { GpuGridLight gridLights[]; };
+layout(std430, binding = LGH_BINDING_PASS4) readonly buffer Targets { uint clusterTargets[]; };
 layout(rgba32f, binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D ratioOut;  // r: visibility ratio, g: rays traced
 
 uniform uint samples;        // k
 uniform uint tilesPerAxis;   // the slots are in the light pass's (tiled) layout
 uniform uvec2 tileSize;
+uniform uint races;          // input lights drawn per grid light (ShadowTargets); 0: jittered centres
+uniform int resampleTargets;  // pick among a grid light's drawn lights by their geometric factor here
 uniform float spread;        // jitter scale: the jitter's standard deviation is spread x the cluster's
 uniform int uniformSelection;
 uniform float clampDistance;
@@ -50,6 +55,32 @@ float raisedCosine(float u) {
 }
 const float kRaisedCosineStd = 0.36151;  // sqrt(1/3 - 2/pi^2)
 
+// The input light a ray towards grid light g aims at. The m drawn lights follow the share of g's
+// importance, w_i a_i / W. What g adds at x is sum_i w_i f_i(x), f_i = a_i G_i(x) with G_i the
+// geometric factor (cosine, lobe, 1/d^2) of light i at x; so resampling the m drawn lights by
+// G_i(x) (weight target / source = w_i a_i G_i / (w_i a_i)) picks light i in proportion to what it
+// adds here as m grows (resampled importance sampling, Talbot et al. 2005), instead of in proportion
+// to its brightness wherever it is. Without resampling: race `race` as drawn.
+uint pickTarget(uint gridLight, uint race, vec3 x, vec3 n, inout Rng rng) {
+  uint drawn = clusterTargets[gridLight * races + race];
+  if (resampleTargets == 0) return drawn;
+  float total = 0.0;
+  uint picked = drawn;  // if no drawn light reaches x, fall back to the plain draw
+  for (uint r = 0u; r < races; ++r) {
+    uint candidate = clusterTargets[gridLight * races + r];
+    if (candidate == kNoLight) continue;
+    ShadedLight c = decodeInputLight(inputLights[candidate]);
+    float a = luminance(c.intensity);
+    float g = a > 0.0 ? luminance(lightContribution(c.position, c.intensity, c.meanNormal, c.omniFraction, x, n,
+                                                    clampDistance)) / a
+                      : 0.0;
+    if (!(g > 0.0)) continue;
+    total += g;
+    if (nextFloat(rng) * total < g) picked = candidate;
+  }
+  return picked;
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, ivec2(frame.resolution.xy)))) return;
@@ -61,16 +92,27 @@ void main() {
   if (s.valid) {
     vec3 origin = offsetRayOrigin(s.position, s.normal);
     Rng rng = makeRng(pixelIndex, frameSeed ^ 0x5bd1e995u);
+    // Slot j reads race (first + j) mod m: a grid light picked twice at one pixel gets two independent
+    // input lights (while k <= m), and neighbouring pixels mostly read different races.
+    uint firstRace = races > 0u ? pcgHash(pixelIndex ^ frameSeed) % races : 0u;
     for (uint j = 0u; j < samples; ++j) {
       uint id = shadowSlots[pixelIndex * samples + j];
       if (id == kNoLight) continue;
-      vec3 sigma = vec3(0.0);
       ShadedLight light;
+      vec3 target;
       if ((id & kSlotS0) != 0u) {
         light = decodeInputLight(inputLights[id & ~kSlotS0]);
+        target = light.position;
       } else {
         light = decodeGridLight(gridLights[id]);
-        sigma = sqrt(max(gridLights[id].variance, vec3(0.0)));
+        uint targetLight = races > 0u ? pickTarget(id, (firstRace + j) % races, s.position, s.normal, rng) : kNoLight;
+        if (targetLight != kNoLight) {
+          target = inputLights[targetLight].position;
+        } else {
+          vec3 sigma = sqrt(max(gridLights[id].variance, vec3(0.0)));
+          vec3 jitter = vec3(raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)));
+          target = light.position + (spread / kRaisedCosineStd) * sigma * jitter;
+        }
       }
       vec3 lightPosition = light.position;
       float weight = 1.0;
@@ -83,8 +125,6 @@ void main() {
                                    s.normal, clampDistance);
         weight = luminance(e);
       }
-      vec3 jitter = vec3(raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)));
-      vec3 target = lightPosition + (spread / kRaisedCosineStd) * sigma * jitter;
       vec3 toLight = target - origin;
       float d = length(toLight);
       // Stop short of the light by a relative margin: VPLs sit on surfaces, and so may a cluster's centre.

@@ -175,11 +175,18 @@ FrameStats Renderer::render(const CameraView& view) {
         interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, options.pass.overdraw, irradiance_,
                                 fragmentCounts_);
       });
+    // Each grid light's shadow-ray targets: input lights drawn by their share of its importance.
+    shadowTargets_.races = 0;
+    if (drawsShadowTargets())
+      timed(passes::kShadowTargets, [&] {
+        shadowTargetsPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_,
+                                   unsigned(settings_.shadows.targets), options.frameSeed, shadowTargets_);
+      });
     // Shadow rays to the picked lights: the raw visibility ratio.
     if (shadowed())
       timed(passes::kShadowRays, [&] {
-        shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, target.layout, inputLights_.lights, hierarchy_, options,
-                               rawRatio_);
+        shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, target.layout, inputLights_.lights, hierarchy_,
+                               shadowTargets_, options, rawRatio_);
       });
     // A-trous filter over the ratio, as a ratio estimator with the unshadowed irradiance.
     if (shadowed())

@@ -32,6 +32,7 @@ inline constexpr const char* kLghBuild = "LGH build";
 inline constexpr const char* kInterleaveSplit = "interleave split";
 inline constexpr const char* kLightPass = "light pass";
 inline constexpr const char* kInterleaveResolve = "interleave resolve";
+inline constexpr const char* kShadowTargets = "shadow targets";
 inline constexpr const char* kShadowRays = "shadow rays";
 inline constexpr const char* kShadowFilter = "shadow filter";
 inline constexpr const char* kComposite = "composite";
@@ -97,6 +98,10 @@ class Renderer {
   void uploadFrameUniforms(const CameraView& view);
   bool pointLightsThroughLgh() const;
   bool shadowed() const { return settings_.shadows.samples > 0; }
+  // Shadow rays aim at input lights drawn from the selected grid lights' clusters.
+  bool drawsShadowTargets() const {
+    return shadowed() && settings_.shadows.targets > 0 && !settings_.lightPass.bruteForce && hierarchy_.grid.levels > 0;
+  }
   bool interleaved() const { return settings_.lightPass.interleave > 1; }
   LightPassOptions lightPassOptions() const;
   LightPassTarget lightPassTarget();
@@ -126,6 +131,7 @@ class Renderer {
   LghBuildPass buildPass_;
   InterleavePass interleavePass_;
   LightVolumePass lightPass_;
+  ShadowTargetsPass shadowTargetsPass_;
   ShadowRayPass shadowRayPass_;
   ShadowFilterPass shadowFilterPass_;
   CompositePass compositePass_;
@@ -142,6 +148,7 @@ class Renderer {
   gl::Texture2D irradiance_;      // LGH irradiance, full resolution
   gl::Texture2D fragmentCounts_;  // R32UI, light-pass fragments per pixel (settings.overdraw)
   ShadowSlots shadowSlots_;       // k selected lights per light-pass pixel
+  ShadowTargets shadowTargets_;   // input lights drawn per grid light as the rays' targets
   gl::Texture2D rawRatio_;        // r: visibility ratio from the shadow rays
   gl::Texture2D visibility_;      // r: filtered ratio
   gl::Texture2D indirect_;        // albedo / pi x irradiance, unshadowed

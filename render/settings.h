@@ -52,10 +52,12 @@ struct LightPassSettings {
 
 // Indirect shadows: the light pass's selection of k lights per pixel and the shadow rays to them.
 struct ShadowSettings {
-  int samples = 4;         // k shadow rays per pixel; 0: indirect light unshadowed
-  bool skipFinest = true;  // the finest level blended (S1, or S0 from start level 0) is not picked
-  bool uniform = false;    // pick lights uniformly instead of by contribution (for comparison)
-  float spread = 1.0f;     // jitter of a cluster's shadow-ray target, in its standard deviations
+  int samples = 4;          // k shadow rays per pixel; 0: indirect light unshadowed
+  bool skipFinest = false;  // true: the finest level blended (S1, or S0 from start level 0) is not picked (the paper)
+  bool uniform = false;     // pick lights uniformly instead of by contribution (for comparison)
+  int targets = 8;          // input lights drawn per grid light each frame as ray targets; 0: jittered centres
+  bool resampleTargets = true;  // each pixel picks among the drawn targets by what they add there
+  float spread = 1.0f;          // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
 };
 
 // The a-trous filter over the shadow ratio (ShadowFilterPass).
@@ -138,8 +140,19 @@ void visitSettings(Settings& s, Visitor&& visit) {
         SettingInfo{"shadow-skip-finest",
                     "do not pick lights of the finest level blended (S1, or S0 with start-level 0) for shadow rays"});
   visit(shadows.uniform, SettingInfo{"shadow-uniform", "pick shadow lights uniformly instead of by contribution"});
-  visit(shadows.spread,
-        SettingInfo{"shadow-spread", "jitter of a cluster's shadow-ray target, in its standard deviations", 0, 16});
+  visit(shadows.targets,
+        SettingInfo{"shadow-targets",
+                    "input lights drawn per grid light each frame, by their share of its importance, as shadow-ray "
+                    "targets (0: the paper's target, the cluster's centre jittered by its spread)",
+                    0, gpu::kMaxShadowTargets});
+  visit(shadows.resampleTargets,
+        SettingInfo{"shadow-resample-targets",
+                    "each pixel picks among a grid light's drawn targets by their unshadowed contribution there "
+                    "(false: by brightness alone, as drawn)"});
+  visit(shadows.spread, SettingInfo{"shadow-spread",
+                                    "jitter of a cluster's shadow-ray target with shadow-targets=0, in its standard "
+                                    "deviations",
+                                    0, 16});
   auto& filter = s.filter;
   visit(filter.passes, SettingInfo{"filter-passes", "a-trous passes over the shadow ratio (0 = raw ratio)", 0, 8});
   visit(filter.normalPower, SettingInfo{"filter-normal-power", "a-trous normal weight max(0, n.n')^p", 0, 1024});

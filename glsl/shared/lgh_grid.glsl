@@ -53,14 +53,28 @@ uint hashKey(uint k) {  // murmur3's finaliser: neighbouring vertices land far a
   return k;
 }
 
-// Declares `bool name##Insert(uint key)` (ordered insertion into keys[]; counts new keys in
-// counter[0], sets counter[1] on overflow) and `uint name##Find(uint key)` (slot or kEmptyKey), for
-// a table of mask + 1 slots. Lookup may stop at a larger key: ordered insertion leaves only smaller
-// keys on a key's probe path (slots only ever decrease).
+// Declares `uint name##Find(uint key)` (slot or kEmptyKey) for a table of mask + 1 slots. Lookup may
+// stop at a larger key: ordered insertion leaves only smaller keys on a key's probe path (slots only
+// ever decrease). `keys` may be readonly.
+#define LGH_DEFINE_HASH_FIND(name, keys, mask)                          \
+  uint name##Find(uint key) {                                           \
+    uint slot = hashKey(key) & (mask);                                  \
+    for (uint probe = 0u; probe <= (mask); ++probe) {                   \
+      uint k = keys[slot];                                              \
+      if (k == key) return slot;                                        \
+      if (k > key) return kEmptyKey;                                    \
+      slot = (slot + 1u) & (mask);                                      \
+    }                                                                   \
+    return kEmptyKey;                                                   \
+  }
+
+// Declares name##Find and `bool name##Insert(uint key)`: ordered insertion into keys[], counting new
+// keys in counter[0] and setting counter[1] on overflow.
 #define LGH_DEFINE_HASH_TABLE(name, keys, counter, mask)                \
+  LGH_DEFINE_HASH_FIND(name, keys, mask)                                \
   bool name##Insert(uint key) {                                         \
-    uint slot = hashKey(key) & (mask);                             \
-    for (uint probe = 0u; probe <= (mask); ++probe) {              \
+    uint slot = hashKey(key) & (mask);                                  \
+    for (uint probe = 0u; probe <= (mask); ++probe) {                   \
       uint old = atomicMin(keys[slot], key);                            \
       if (old == kEmptyKey) {                                           \
         atomicAdd(counter[0], 1u);                                      \
@@ -68,20 +82,10 @@ uint hashKey(uint k) {  // murmur3's finaliser: neighbouring vertices land far a
       }                                                                 \
       if (old == key) return true;                                      \
       key = max(key, old);                                              \
-      slot = (slot + 1u) & (mask);                                 \
+      slot = (slot + 1u) & (mask);                                      \
     }                                                                   \
     counter[1] = 1u;                                                    \
     return false;                                                       \
-  }                                                                     \
-  uint name##Find(uint key) {                                           \
-    uint slot = hashKey(key) & (mask);                             \
-    for (uint probe = 0u; probe <= (mask); ++probe) {              \
-      uint k = keys[slot];                                              \
-      if (k == key) return slot;                                        \
-      if (k > key) return kEmptyKey;                                    \
-      slot = (slot + 1u) & (mask);                                 \
-    }                                                                   \
-    return kEmptyKey;                                                   \
   }
 
 // A grid light from its sums, all offsets in units of the cell size h relative to its vertex:

@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "render/gl/debug.h"
 #include "shared/bindings.h"
@@ -74,12 +75,19 @@ void LghBuildPass::forEachLightChunk(const gl::Buffer& lights, size_t lightCount
   }
 }
 
-void LghBuildPass::setGridParams(const GridGeometry& grid, int level, size_t capacity, size_t stopAt, double scale) {
+gpu::LghGridParams gridParamsFor(const GridGeometry& grid, int level, size_t tableCapacity) {
   gpu::LghGridParams p{};
   p.originAndTopCell = glm::vec4(glm::vec3(grid.origin), float(grid.topCellSize));
   p.levelsAndCounts = glm::uvec4(unsigned(grid.levels), unsigned(level), 0u, unsigned(verticesPerAxis(grid, level)));
-  p.cellSizeAndScale = glm::vec4(float(grid.cellSize(level)), float(scale), 0.0f, 0.0f);
-  p.table = glm::uvec4(unsigned(capacity), unsigned(capacity - 1), unsigned(std::min<size_t>(stopAt, 0xffffffffu)), 0u);
+  p.cellSizeAndScale = glm::vec4(float(grid.cellSize(level)), 0.0f, 0.0f, 0.0f);
+  p.table = glm::uvec4(unsigned(tableCapacity), unsigned(tableCapacity - 1), 0xffffffffu, 0u);
+  return p;
+}
+
+void LghBuildPass::setGridParams(const GridGeometry& grid, int level, size_t capacity, size_t stopAt, double scale) {
+  gpu::LghGridParams p = gridParamsFor(grid, level, capacity);
+  p.cellSizeAndScale.y = float(scale);
+  p.table.z = unsigned(std::min<size_t>(stopAt, 0xffffffffu));
   gridParams_.update(&p, sizeof p);
   gridParams_.bindBase(GL_UNIFORM_BUFFER, LGH_UBO_PASS);
 }
@@ -188,7 +196,6 @@ void LghBuildPass::scatterLevel(const gl::Buffer& lights, size_t lightCount, con
   setGridParams(grid, level, table.capacity, SIZE_MAX, scale);
   table.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   table.slotIndex.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
-  counters_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
   accPosition_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
   accIntensity_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);
   accNormal_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS6);
@@ -216,7 +223,6 @@ void LghBuildPass::gatherLevel(const LevelTable& children, const GridGeometry& g
   children.gridLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   children.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   children.slotIndex.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
-  counters_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
   table.gridLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
   table.compactKeys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS7);
   gather_.set("vertexCount", GLuint(table.count));
@@ -282,6 +288,7 @@ void LghBuildPass::execute(const gl::Buffer& lights, size_t lightCount, const Lg
   }
   const GridGeometry grid = makeGridAround(bounds.lower, bounds.upper, levels, eMin);
   out.grid = grid;
+  out.gathered = options.gatherCoarseLevels;
   out.levels.assign(size_t(levels) + 1, {});
 
   std::vector<LevelTable> tables(size_t(levels) + 1);
@@ -292,8 +299,9 @@ void LghBuildPass::execute(const gl::Buffer& lights, size_t lightCount, const Lg
       scatterLevel(lights, lightCount, grid, level, bounds.largestValue, options.floatAtomics, tables[size_t(level)]);
     else
       gatherLevel(tables[size_t(level) - 1], grid, level, tables[size_t(level)]);
-    // A gathered level only looks up the level right below it: drop older hash tables early.
-    if (level >= 2) tables[size_t(level) - 2].releaseLookup();
+    // A gathered level only reads the keys of the level right below it (the hash tables stay, for the
+    // shadow targets).
+    if (level >= 2) tables[size_t(level) - 2].releaseCompactKeys();
   }
   gl::checkErrors("LGH build levels");
 
@@ -313,6 +321,11 @@ void LghBuildPass::execute(const gl::Buffer& lights, size_t lightCount, const Lg
                                GLintptr(out.levels[size_t(level)].offset * sizeof(gpu::GpuGridLight)),
                                GLsizeiptr(t.count * sizeof(gpu::GpuGridLight)));
     }
+  }
+  out.lookups.resize(size_t(levels) + 1);
+  for (int level = 1; level <= levels; ++level) {
+    LevelTable& t = tables[size_t(level)];
+    out.lookups[size_t(level)] = {std::move(t.keys), std::move(t.slotIndex), t.capacity};
   }
   gl::checkErrors("LGH build");
 }

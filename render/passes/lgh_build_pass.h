@@ -43,15 +43,27 @@ struct LghLevelRange {
   size_t offset = 0, count = 0;  // into GpuHierarchy::gridLights, in grid lights
 };
 
+// A level's vertex lookup: hash table of vertex keys (lgh_grid.glsl) and, per slot, the grid light's
+// index within the level. Kept after the build for passes that find grid lights from positions.
+struct LghLevelLookup {
+  gl::Buffer keys, slotIndex;
+  size_t capacity = 0;  // slots, a power of two
+};
+
 struct GpuHierarchy {
-  GridGeometry grid;                  // levels == 0 when there is nothing to build (no lights)
-  std::vector<LghLevelRange> levels;  // levels[l] for l in 1..L; levels[0] unused
-  gl::Buffer gridLights;              // gpu::GpuGridLight, level 1 first
+  GridGeometry grid;                    // levels == 0 when there is nothing to build (no lights)
+  std::vector<LghLevelRange> levels;    // levels[l] for l in 1..L; levels[0] unused
+  std::vector<LghLevelLookup> lookups;  // lookups[l] for l in 1..L
+  bool gathered = true;                 // levels >= 2 built from the level below (else each from S0)
+  gl::Buffer gridLights;                // gpu::GpuGridLight, level 1 first
   size_t gridLightCount = 0;
   size_t litLightCount = 0;  // input lights with luminance > 0
   // Reads level l back, for tests and statistics.
   std::vector<gpu::GpuGridLight> downloadLevel(int level) const;
 };
+
+// The build kernels' grid uniforms for `level` (and any pass that locates cells the same way).
+gpu::LghGridParams gridParamsFor(const GridGeometry& grid, int level, size_t tableCapacity);
 
 class LghBuildPass {
  public:
@@ -70,7 +82,7 @@ class LghBuildPass {
     gl::Buffer keys, slotIndex, compactKeys;  // lookup: hash table, slot -> light index, light -> key
     gl::Buffer gridLights;                    // the level's grid lights, until merged
     size_t capacity = 0, count = 0;
-    void releaseLookup() { keys = {}, slotIndex = {}, compactKeys = {}; }
+    void releaseCompactKeys() { compactKeys = {}; }
   };
   struct Bounds {
     glm::dvec3 lower, upper;

@@ -11,17 +11,22 @@ ShadowRayPass::ShadowRayPass() : program_(gl::Program::compute("shadow_rays.comp
 
 void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const ShadowSlots& slots,
                             const TileLayout& layout, const gl::Buffer& inputLights, const GpuHierarchy& hierarchy,
-                            const LightPassOptions& lightPass, gl::Texture2D& rawRatio) const {
+                            const ShadowTargets& targets, const LightPassOptions& lightPass,
+                            gl::Texture2D& rawRatio) const {
   scene.bindForCompute();
   gbuffer.bindForReading();
   inputLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   slots.slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   // A buffer must be bound even when there is no hierarchy (brute force): the input lights stand in.
   (hierarchy.gridLights ? hierarchy.gridLights : inputLights).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+  const bool drawnTargets = targets.races > 0 && targets.targets;
+  (drawnTargets ? targets.targets : inputLights).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
   rawRatio.bindImage(LGH_IMAGE_SHADOW_RATIO, GL_WRITE_ONLY);
   program_.set("samples", unsigned(slots.k));
   program_.set("tilesPerAxis", unsigned(layout.tilesPerAxis));
   program_.set("tileSize", glm::uvec2(layout.tileSize));
+  program_.set("races", drawnTargets ? targets.races : 0u);
+  program_.set("resampleTargets", int(lightPass.shadows.resampleTargets));
   program_.set("spread", lightPass.shadows.spread);
   program_.set("uniformSelection", int(lightPass.shadows.uniform));
   program_.set("clampDistance", lightPass.clampDistance);

@@ -1,6 +1,7 @@
 #pragma once
 // Indirect shadows (docs/design.md §5-§6), after the light pass has picked k lights per pixel:
-//   ShadowRayPass:    GBuffer, ShadowSlots, lights -> raw visibility ratio (RGBA32F: r ratio, g rays)
+//   ShadowRayPass:    GBuffer, ShadowSlots, lights, ShadowTargets -> raw visibility ratio (RGBA32F: r ratio,
+//                     g rays)
 //   ShadowFilterPass: raw ratio, unshadowed irradiance, GBuffer -> filtered ratio (RGBA32F: r), by
 //                     an a-trous filter applied as a ratio estimator
 
@@ -11,6 +12,7 @@
 #include "render/passes/interleave_pass.h"
 #include "render/passes/lgh_build_pass.h"
 #include "render/passes/light_volume_pass.h"
+#include "render/passes/shadow_targets_pass.h"
 
 namespace lgh {
 
@@ -20,8 +22,8 @@ class ShadowRayPass {
   // `lightPass` is what the light pass that filled `slots` was run with (blending, selection mode and
   // spread, frame seed).
   void execute(const SceneGpu& scene, const GBuffer& gbuffer, const ShadowSlots& slots, const TileLayout& layout,
-               const gl::Buffer& inputLights, const GpuHierarchy& hierarchy, const LightPassOptions& lightPass,
-               gl::Texture2D& rawRatio) const;
+               const gl::Buffer& inputLights, const GpuHierarchy& hierarchy, const ShadowTargets& targets,
+               const LightPassOptions& lightPass, gl::Texture2D& rawRatio) const;
 
  private:
   gl::Program program_;

@@ -1,0 +1,82 @@
+#include "render/passes/shadow_targets_pass.h"
+
+#include <algorithm>
+
+#include "render/gl/debug.h"
+#include "shared/bindings.h"
+#include "shared/light_pass_types.h"
+
+namespace lgh {
+namespace {
+constexpr unsigned kLocalSize = 256;
+constexpr size_t kLightChunkGranularity = 1024;  // chunk offsets stay multiples of 32 KiB (any SSBO alignment)
+}  // namespace
+
+ShadowTargetsPass::ShadowTargetsPass()
+    : raceFromLights_(gl::Program::compute("shadow_targets.comp", {{"SHADOW_TARGETS_RACE", "1"}})),
+      resolveFromLights_(gl::Program::compute("shadow_targets.comp")),
+      raceFromGridLights_(gl::Program::compute(
+          "shadow_targets.comp", {{"SHADOW_TARGETS_RACE", "1"}, {"SHADOW_TARGETS_FROM_GRID_LIGHTS", "1"}})),
+      resolveFromGridLights_(gl::Program::compute("shadow_targets.comp", {{"SHADOW_TARGETS_FROM_GRID_LIGHTS", "1"}})),
+      gridParams_(sizeof(gpu::LghGridParams)) {
+  GLint64 maxBlock = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+  maxBlockBytes_ = size_t(std::max<GLint64>(maxBlock, 1 << 24));
+}
+
+void ShadowTargetsPass::execute(const gl::Buffer& inputLights, size_t inputLightCount, const GpuHierarchy& hierarchy,
+                                unsigned races, unsigned frameSeed, ShadowTargets& out) {
+  out.races = races;
+  const size_t entries = std::max<size_t>(hierarchy.gridLightCount * races, 1);
+  ensureSize(out.targets, entries * sizeof(GLuint));
+  ensureSize(raceTimes_, entries * sizeof(GLuint));
+  out.targets.clearUint(gpu::kNoLight);
+  raceTimes_.clearUint(0xffffffffu);  // above every finite time's bits
+  raceTimes_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
+  out.targets.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);
+  // Finest level first: a gathered level hands on the draws of the level below.
+  for (int level = 1; level <= hierarchy.grid.levels; ++level) {
+    const unsigned seed = frameSeed ^ (0x632be5abu * unsigned(level));
+    runLevel(raceFromLights_, raceFromGridLights_, inputLights, inputLightCount, hierarchy, level, races, seed);
+    runLevel(resolveFromLights_, resolveFromGridLights_, inputLights, inputLightCount, hierarchy, level, races, seed);
+  }
+  gl::checkErrors("shadow targets");
+}
+
+void ShadowTargetsPass::runLevel(const gl::Program& fromLights, const gl::Program& fromGridLights,
+                                 const gl::Buffer& inputLights, size_t inputLightCount, const GpuHierarchy& hierarchy,
+                                 int level, unsigned races, unsigned seed) {
+  const LghLevelLookup& lookup = hierarchy.lookups[size_t(level)];
+  const gpu::LghGridParams params = gridParamsFor(hierarchy.grid, level, lookup.capacity);
+  gridParams_.update(&params, sizeof params);
+  gridParams_.bindBase(GL_UNIFORM_BUFFER, LGH_UBO_PASS);
+  lookup.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  lookup.slotIndex.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  auto dispatch = [&](const gl::Program& program, size_t count, size_t base, size_t index) {
+    program.set("sourceCount", GLuint(count));
+    program.set("sourceBase", GLuint(base));
+    program.set("sourceIndex", GLuint(index));
+    program.set("levelOffset", GLuint(hierarchy.levels[size_t(level)].offset));
+    program.set("races", GLuint(races));
+    program.set("seed", GLuint(seed));
+    program.dispatch1D(count, kLocalSize);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  };
+  if (level >= 2 && hierarchy.gathered) {
+    const LghLevelRange& below = hierarchy.levels[size_t(level) - 1];
+    hierarchy.gridLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+    dispatch(fromGridLights, below.count, below.offset, below.offset);
+    return;
+  }
+  // S0 in chunks of one storage block.
+  const size_t chunk = std::max(
+      kLightChunkGranularity, maxBlockBytes_ / sizeof(gpu::GpuLight) / kLightChunkGranularity * kLightChunkGranularity);
+  for (size_t first = 0; first < inputLightCount; first += chunk) {
+    const size_t count = std::min(chunk, inputLightCount - first);
+    inputLights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight),
+                          count * sizeof(gpu::GpuLight));
+    dispatch(fromLights, count, 0, first);
+  }
+}
+
+}  // namespace lgh

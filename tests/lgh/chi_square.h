@@ -1,0 +1,46 @@
+#pragma once
+
+// Pearson's chi-square test of observed counts against expected probabilities, shared by the CPU and
+// GPU sampling tests.
+
+#include <cmath>
+#include <vector>
+
+namespace lgh::test {
+
+struct ChiSquare {
+  double statistic = 0;
+  int dof = 0;
+  double critical01 = 0;  // the statistic exceeds it with probability 1% when the counts follow the probabilities
+  bool passes() const { return statistic < critical01; }
+};
+
+// Bins whose expected count is below 5 are pooled into one (the test's usual validity condition).
+// The 1% critical value is Wilson and Hilferty's cube-root approximation (within 1% for dof >= 3).
+inline ChiSquare chiSquare(const std::vector<double>& counts, const std::vector<double>& probabilities) {
+  double total = 0;
+  for (double c : counts) total += c;
+  ChiSquare result;
+  double pooledObserved = 0, pooledExpected = 0;
+  int bins = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    const double expected = total * probabilities[i];
+    if (expected < 5) {
+      pooledObserved += counts[i];
+      pooledExpected += expected;
+      continue;
+    }
+    result.statistic += (counts[i] - expected) * (counts[i] - expected) / expected;
+    ++bins;
+  }
+  if (pooledExpected > 0) {
+    result.statistic += (pooledObserved - pooledExpected) * (pooledObserved - pooledExpected) / pooledExpected;
+    ++bins;
+  }
+  result.dof = bins - 1;
+  const double k = std::max(result.dof, 1);
+  result.critical01 = k * std::pow(1.0 - 2.0 / (9.0 * k) + 2.3263 * std::sqrt(2.0 / (9.0 * k)), 3.0);
+  return result;
+}
+
+}  // namespace lgh::test
