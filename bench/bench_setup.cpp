@@ -86,7 +86,7 @@ double lightPassMs(const FrameStats& stats) {
 }
 
 double shadowMs(const FrameStats& stats) {
-  return stats.passMs(passes::kShadowRays) + stats.passMs(passes::kShadowFilter);
+  return stats.passMs(passes::kShadowTargets) + stats.passMs(passes::kShadowRays) + stats.passMs(passes::kShadowFilter);
 }
 
 }  // namespace lgh::bench

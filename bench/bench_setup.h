@@ -83,7 +83,7 @@ std::string sourceRelative(const std::filesystem::path& path);
 size_t gridLightsOf(const LightStats& lights);
 // The light pass as a frame pays for it: interleave split + light pass + interleave resolve (ms).
 double lightPassMs(const FrameStats& stats);
-// The indirect shadows: shadow rays + shadow filter (ms).
+// The indirect shadows: shadow targets + shadow rays + shadow filter (ms).
 double shadowMs(const FrameStats& stats);
 
 }  // namespace lgh::bench

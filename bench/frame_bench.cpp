@@ -17,10 +17,13 @@ namespace {
 // The frame's passes in order; the paper's Table 3 names in brackets where they differ.
 const std::vector<std::string> kPasses{passes::kGBuffer,           passes::kDirectLight,     passes::kInputLights,
                                        passes::kLghBuild,          passes::kInterleaveSplit, passes::kLightPass,
-                                       passes::kInterleaveResolve, passes::kShadowRays,      passes::kShadowFilter,
-                                       passes::kComposite};
+                                       passes::kInterleaveResolve, passes::kShadowTargets,   passes::kShadowRays,
+                                       passes::kShadowFilter,      passes::kComposite};
 
 const std::string kCubeLightPass = "light pass (cubes)";  // not part of the frame: the same pass with cube volumes
+// Not part of the frame either: the shadow rays aimed as in the paper (jittered cluster centres, S1 not
+// selected), the pass the default's "shadow targets" + "shadow rays" replace.
+const std::string kPaperShadowRays = "shadow rays (paper's targets)";
 
 }  // namespace
 
@@ -39,6 +42,10 @@ CLI::App* addFrameCommand(CLI::App& app, FrameBenchOptions& options) {
   command
       ->add_option("--compare-cubes", options.compareCubes,
                    "also time the light pass with the paper's cube volumes (row 'light pass (cubes)')")
+      ->capture_default_str();
+  command
+      ->add_option("--compare-targets", options.compareTargets,
+                   "also time the shadow rays aimed as in the paper (row 'shadow rays (paper's targets)')")
       ->capture_default_str();
   command->add_option("--csv", options.csvPath, "also write the per-pass medians as CSV");
   return command;
@@ -77,6 +84,13 @@ FrameTimes measureFrames(RenderBench& bench, const RenderSettings& settings, con
         RenderSettings cubes = s;
         cubes.lightPass.volumeCulling = false;
         t.passMs[n][kCubeLightPass].push_back(bench.renderer().render(cubes).passMs(passes::kLightPass));
+      }
+      if (options.compareTargets) {
+        // The same frame again with the paper's shadow-ray targets, for the cost of aiming at input lights.
+        RenderSettings paper = s;
+        paper.shadows.targets = 0;
+        paper.shadows.skipFinest = true;
+        t.passMs[n][kPaperShadowRays].push_back(bench.renderer().render(paper).passMs(passes::kShadowRays));
       }
     }
     std::fprintf(stderr, "  %dx%d done\n", n, n);
@@ -117,6 +131,18 @@ void printFrames(RenderBench& bench, const RenderSettings& settings, const Frame
     table.addRow(cubes);
     table.addRow(ratio);
   }
+  if (options.compareTargets) {
+    std::vector<std::string> paper{kPaperShadowRays}, ratio{"(targets + rays) / paper's"};
+    for (int n : options.interleave) {
+      const double before = spreadOf(t.passMs[n][kPaperShadowRays]).median;
+      const double now =
+          spreadOf(t.passMs[n][passes::kShadowTargets]).median + spreadOf(t.passMs[n][passes::kShadowRays]).median;
+      paper.push_back(formatMs(before));
+      ratio.push_back(formatRatio(now / std::max(before, 1e-30)));
+    }
+    table.addRow(paper);
+    table.addRow(ratio);
+  }
   std::vector<std::string> total{"total"}, frags{"fragments/px"};
   for (int n : options.interleave) {
     total.push_back(formatSpread(spreadOf(t.totalMs[n])));
@@ -138,6 +164,7 @@ void writeCsv(const std::string& path, const FrameBenchOptions& options, FrameTi
   for (int n : options.interleave) {
     for (const std::string& pass : kPasses) row(n, pass, t.passMs[n][pass]);
     if (options.compareCubes) row(n, kCubeLightPass, t.passMs[n][kCubeLightPass]);
+    if (options.compareTargets) row(n, kPaperShadowRays, t.passMs[n][kPaperShadowRays]);
     row(n, "total", t.totalMs[n]);
   }
 }

@@ -19,7 +19,8 @@ struct FrameBenchOptions {
   RenderBenchOptions render;
   std::vector<int> interleave{1, 2, 4};
   int repeats = 3;
-  bool compareCubes = true;  // also time the light pass with the paper's cube volumes, frame by frame
+  bool compareCubes = true;    // also time the light pass with the paper's cube volumes, frame by frame
+  bool compareTargets = true;  // also time the shadow rays aimed at the paper's jittered cluster centres
   std::string csvPath;
 };
 

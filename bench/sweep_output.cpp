@@ -136,7 +136,7 @@ std::vector<std::string> csvCells(const Case& c, const Measurement& m) {
         num(m.buildMs),
         num(m.passMedian(passes::kLightPass)),
         interleaved ? num(m.passMedian(passes::kInterleaveSplit) + m.passMedian(passes::kInterleaveResolve)) : "",
-        num(m.passMedian(passes::kShadowRays)),
+        num(m.passMedian(passes::kShadowTargets) + m.passMedian(passes::kShadowRays)),
         num(m.passMedian(passes::kShadowFilter)),
         num(median(m.frameMs)),
         std::string(m.extrapolated ? "1" : "0"),
@@ -177,7 +177,8 @@ json settingsJson(RenderSettings s) {
 
 json definitionsJson() {
   return {{"time_ms",
-           "shadowed estimate: LGH build + interleave split + light pass + resolve + shadow rays + filter; "
+           "shadowed estimate: LGH build + interleave split + light pass + resolve + shadow targets + shadow rays + "
+           "filter; "
            "uniform_shadowed: compute brute force with one ray per subset light and pixel; brute_force_ratio and "
            "uniform_ratio: the rasterized brute-force light pass over all / about M lights (a fresh set: VPL budget "
            "and emitter samples scaled by M/N) with the frame's shadow rays and filter"},

@@ -47,14 +47,15 @@ void main() {
   GridCell c = locateCell(position);
   for (uint corner = 0u; corner < 8u; ++corner) {
     uvec3 offset = cornerOffset(corner);
-    float wa = cornerWeight(c.t, offset) * a;
+    precise float wa = cornerWeight(c.t, offset) * a;  // precise: both kernels must get the same bits
     if (!(wa > 0.0)) continue;
     uint slot = tableFind(vertexKey(c.cell + offset));
     if (slot == kEmptyKey) continue;  // cannot happen: the level was built from these sources
     uint parent = levelOffset + slotIndex[slot];
     Rng rng = makeRng(source * 8u + corner, seed);
     for (uint j = 0u; j < races; ++j) {
-      uint t = floatBitsToUint(abs(log(1.0 - nextFloat(rng))) / wa);  // >= +0, so bits order as floats
+      precise float time = abs(log(1.0 - nextFloat(rng))) / wa;  // >= +0, so bits order as floats
+      uint t = floatBitsToUint(time);
 #ifdef SHADOW_TARGETS_RACE
       atomicMin(raceTimes[parent * races + j], t);
 #else

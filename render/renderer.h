@@ -100,7 +100,8 @@ class Renderer {
   bool shadowed() const { return settings_.shadows.samples > 0; }
   // Shadow rays aim at input lights drawn from the selected grid lights' clusters.
   bool drawsShadowTargets() const {
-    return shadowed() && settings_.shadows.targets > 0 && !settings_.lightPass.bruteForce && hierarchy_.grid.levels > 0;
+    return shadowed() && settings_.shadows.targets > 0 && !settings_.lightPass.bruteForce &&
+           hierarchy_.gridLightCount > 0;
   }
   bool interleaved() const { return settings_.lightPass.interleave > 1; }
   LightPassOptions lightPassOptions() const;

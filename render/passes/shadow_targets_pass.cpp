@@ -35,7 +35,9 @@ void ShadowTargetsPass::execute(const gl::Buffer& inputLights, size_t inputLight
   raceTimes_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
   out.targets.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);
   // Finest level first: a gathered level hands on the draws of the level below.
-  for (int level = 1; level <= hierarchy.grid.levels; ++level) {
+  // (No grid lights, e.g. no input lights at all: nothing to draw; the lookups may not exist.)
+  const int levels = hierarchy.gridLightCount > 0 ? int(hierarchy.lookups.size()) - 1 : 0;
+  for (int level = 1; level <= levels; ++level) {
     const unsigned seed = frameSeed ^ (0x632be5abu * unsigned(level));
     runLevel(raceFromLights_, raceFromGridLights_, inputLights, inputLightCount, hierarchy, level, races, seed);
     runLevel(resolveFromLights_, resolveFromGridLights_, inputLights, inputLightCount, hierarchy, level, races, seed);

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Error of the shadowed indirect light against k (1, 4, 16; one frame, filtered and raw) and against
+# accumulated still frames (1, 4, 16, 64 at k = 4), for both shadow-ray target modes (input lights drawn
+# by share and resampled: the default; the paper's jittered cluster centres with S1 not selected), on
+# sponza_sun@atrium and cornell_emissive at 10K and 100K VPLs, 320x180, alpha 2, S1; plus the
+# unshadowed error of 4x4 interleaving accumulated over 16 frames against 1x1. Writes the sweeps under
+# OUT (default build-convergence/) and the table bench/results/convergence.md (bench/convergence_table.py).
+# Usage: bench/convergence.sh [BUILD_DIR] [OUT]   (about 40 minutes on 2 cores; references are cached)
+set -euo pipefail
+here="$(cd "$(dirname "$0")/.." && pwd)"
+build="${1:-$here/build}"
+out="${2:-$here/build-convergence}"
+scenes="$here/../shared/scenes"
+if [ ! -d "$scenes" ]; then
+  echo "bench/convergence.sh: $scenes is missing (the test scenes live beside the repository); nothing measured" >&2
+  exit 1
+fi
+common=(--alpha 2 --start-level 1 --repeats 1 --retries 0 --uniform-lights 16 --uniform-shadowed-lights 2
+        --brute-force-limit 0 --images false --cache-dir "$here/build-sweep/reference-cache")
+declare -A modes=([lights]="" [paper]="--set shadow-targets=0 --set shadow-skip-finest=true")
+for scene in "sponza_sun/sponza_sun.gltf@atrium" "cornell_emissive/cornell_emissive.gltf"; do
+  name="$(basename "${scene%%@*}" .gltf)"
+  for vpls in 10000 100000; do
+    for mode in lights paper; do
+      dir="$out/${name}_${vpls}_${mode}"
+      # shellcheck disable=SC2086  # the mode's --set pairs split on purpose
+      "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" ${modes[$mode]} \
+        --interleave 1 --shadow-samples 1,4,16 --filter on,off --frames 1 --out "$dir/k"
+      "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" ${modes[$mode]} \
+        --interleave 1 --shadow-samples 4 --filter on,off --frames 4,16,64 --out "$dir/frames"
+    done
+    "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" \
+      --interleave 1,4 --shadow-samples 0 --frames 1,16 --out "$out/${name}_${vpls}_interleave"
+  done
+done
+python3 "$here/bench/convergence_table.py" "$out" > "$here/bench/results/convergence.md"
+echo "wrote bench/results/convergence.md"
