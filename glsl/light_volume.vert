@@ -122,7 +122,7 @@ bool surfacesInFront(vec4 rect, float nearDepth) {
 const uint kOctagonStrip[8] = uint[](0u, 1u, 7u, 2u, 6u, 3u, 5u, 4u);
 
 // A corner of the strip of the NDC octagon bounding the sphere (its rectangle with the corners cut by
-// the diagonal tangents), at the culling depth of its far side (the depth test passes where the
+// the diagonal tangents), at the volumeDepth of its far side (the depth test passes where the
 // surface is not behind the sphere). The camera inside or beside the sphere: the whole viewport (in
 // unsorted draws; sorted ones draw such a light as an icosahedron, crossingCorner).
 // Nothing drawn (a degenerate rectangle) for a sphere wholly behind the eye, or one that every
