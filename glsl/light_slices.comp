@@ -6,6 +6,9 @@
 //      order; the running counts per slice carry over between dispatches in sliceCounts
 //   1  one invocation: slice offsets (prefix sum) and one indirect draw command per slice
 //   2  per light: its index at offset[slice] + rank
+// Spheres that reach the eye plane (no finite screen bound) go to one more bucket after the slices,
+// `slices`: they are drawn as icosahedra (kCrossingVolumeVertices vertices; their index flagged
+// kCrossingVolume), not as octagons.
 // Stable, so the draw order, and with it the blending sums and the shadow selection, is the same on
 // every run. Step 0 runs in ranges so that no invocation loops past llvmpipe's 65,535 iterations.
 layout(local_size_x = 64) in;
@@ -24,18 +27,24 @@ uniform uint first;     // index of the first light sorted in `lights`
 uniform uint count;     // lights sorted
 uniform uint rangeStart, rangeCount;  // step 0: this dispatch's lights (relative to `first`)
 uniform uint slices;
-uniform uint verticesPerVolume;
+uniform uint verticesPerVolume;  // of an octagon; crossing spheres: kCrossingVolumeVertices
 uniform float alpha, topCellSize, depthScale, margin;
 uniform uint levels;
 
 const uint kNoSlice = 0xffffffffu;
 shared uint chunkSlices[64];
-shared uint runningCounts[kMaxCullingSlices];
+shared uint runningCounts[kMaxCullingSlices + 1u];
 
+// The light's slice, or `slices` for a sphere that reaches the eye plane (light_volume.vert's
+// culledCorner would give it the whole viewport). One wholly behind the eye stays an octagon (slice 0),
+// which culledCorner draws as nothing.
 uint sliceOfLight(uint i) {
   GpuGridLight l = lights[first + i];
   float r = 2.0 * levelRadius(alpha, topCellSize, l.level, levels) * (1.0 + margin);
   vec2 wRange = sphereClipWRange(frame.viewProjection, l.position, r);
+  vec4 bounds, diagonals;
+  if (wRange.y > 0.0 && !projectedSphereBounds(frame.viewProjection, l.position, r, bounds, diagonals))
+    return slices;
   return sliceOf(cullingDepth(wRange.x * (1.0 - margin), depthScale), slices);
 }
 
@@ -43,7 +52,7 @@ uint sliceOfLight(uint i) {
 // its slice in the chunk; then the chunk's last light of each slice advances the running count.
 void rankInOrder() {
   uint t = gl_LocalInvocationID.x;
-  for (uint k = t; k < slices; k += 64u) runningCounts[k] = sliceCounts[k];
+  for (uint k = t; k <= slices; k += 64u) runningCounts[k] = sliceCounts[k];
   barrier();
   for (uint base = rangeStart; base < rangeStart + rangeCount; base += 64u) {
     uint i = base + t;
@@ -62,7 +71,7 @@ void rankInOrder() {
     if (lastOfSlice) runningCounts[slice] += before + 1u;
     barrier();
   }
-  for (uint k = t; k < slices; k += 64u) sliceCounts[k] = runningCounts[k];
+  for (uint k = t; k <= slices; k += 64u) sliceCounts[k] = runningCounts[k];
 }
 
 void main() {
@@ -74,8 +83,8 @@ void main() {
   if (step == 1) {
     if (i != 0u) return;
     uint offset = 0u;
-    for (uint k = 0u; k < slices; ++k) {
-      commands[4u * k + 0u] = verticesPerVolume;
+    for (uint k = 0u; k <= slices; ++k) {
+      commands[4u * k + 0u] = k < slices ? verticesPerVolume : kCrossingVolumeVertices;
       commands[4u * k + 1u] = sliceCounts[k];
       commands[4u * k + 2u] = 0u;
       commands[4u * k + 3u] = offset;  // baseInstance: where the slice's lights start in sortedLights
@@ -87,5 +96,6 @@ void main() {
   }
   if (i >= count) return;
   uint slot = sliceAndRank[i];
-  sortedLights[sliceCounts[slot >> 24u] + (slot & 0xffffffu)] = first + i;
+  uint slice = slot >> 24u;
+  sortedLights[sliceCounts[slice] + (slot & 0xffffffu)] = (first + i) | (slice == slices ? kCrossingVolume : 0u);
 }

@@ -10,7 +10,12 @@
 //                sphere (the light is hidden), read from a max-depth pyramid (light_depth_pyramid.comp).
 //                Grid lights come sorted by the depth slice of their sphere's near side and are drawn
 //                with that slice as stencil reference: pixels whose surface lies in a nearer slice
-//                are rejected before shading too (render/passes/volume_culling.h).
+//                are rejected before shading too (render/passes/volume_culling.h). Depths are
+//                volumeDepth (shared/light_levels.h), drawn with GL_ZERO_TO_ONE.
+//   crossing     sorted grid lights whose sphere reaches the eye plane (flagged kCrossingVolume):
+//                the 20 triangles of an icosahedron around the sphere, back faces kept, each at its
+//                own volumeDepth, so that a pixel is shaded only where its surface is not behind
+//                the icosahedron's far side.
 // With n x n interleaving the light is drawn into one tile only: its clip-space position is mapped
 // into that tile's block of the de-interleaved target and clipped to it with four clip distances.
 #include "shared/bindings.h"
@@ -25,7 +30,8 @@ layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight li
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer GridLights { GpuGridLight lights[]; };
 #endif
 #ifdef LGH_SORTED_LIGHTS
-// Culled grid lights drawn slice by slice (VolumeCulling::drawSorted): the light's index in the buffer.
+// Culled grid lights drawn slice by slice (VolumeCulling::drawSorted): the light's index in the buffer,
+// with kCrossingVolume set for lights drawn as icosahedra.
 layout(location = 0) in uint sortedLightIndex;
 #endif
 // Deepest culling depth of the surfaces per texel of each level, in the target's (tiled) layout.
@@ -116,8 +122,9 @@ bool surfacesInFront(vec4 rect, float nearDepth) {
 const uint kOctagonStrip[8] = uint[](0u, 1u, 7u, 2u, 6u, 3u, 5u, 4u);
 
 // A corner of the strip of the NDC octagon bounding the sphere (its rectangle with the corners cut by
-// the diagonal tangents), at the culling depth of its far side (the depth test passes where the
-// surface is not behind the sphere). The camera inside or beside the sphere: the whole viewport.
+// the diagonal tangents), at the volumeDepth of its far side (the depth test passes where the
+// surface is not behind the sphere). The camera inside or beside the sphere: the whole viewport (in
+// unsorted draws; sorted ones draw such a light as an icosahedron, crossingCorner).
 // Nothing drawn (a degenerate rectangle) for a sphere wholly behind the eye, or one that every
 // surface under its rectangle hides.
 vec4 culledCorner(float radius, TileMap tile) {
@@ -134,14 +141,26 @@ vec4 culledCorner(float radius, TileMap tile) {
   vec4 inTile = clamp(vec4(tile.scale, tile.scale) * bounds + vec4(tile.offset, tile.offset), tile.lo.xyxy, tile.hi.xyxy);
   float nearDepth = cullingDepth(wRange.x * (1.0 - kCullingMargin), pass.cullingDepthScale);
   if (surfacesInFront(inTile, nearDepth)) return nothing;
-  float farDepth = cullingDepth(wRange.y * (1.0 + kCullingMargin), pass.cullingDepthScale);
-  return vec4(octagonCorner(bounds, diagonals, kOctagonStrip[gl_VertexID]), 2.0 * farDepth - 1.0, 1.0);
+  float farDepth = volumeDepth(wRange.y * (1.0 + kCullingMargin), frame.sceneScale.w);
+  return vec4(octagonCorner(bounds, diagonals, kOctagonStrip[gl_VertexID]), farDepth, 1.0);
+}
+
+// A corner of the icosahedron whose faces lie at least `radius` (widened) from the light, at its own
+// volumeDepth (clip z = nearW: depth nearW / w, clipped where w < nearW, in front of every surface).
+// Front faces are culled (VolumeCulling::drawSorted): each pixel keeps the far side.
+vec4 crossingCorner(float radius) {
+  float r = radius * (1.0 + kCullingMargin) / kIcosahedronInradius;
+  vec4 clip = frame.viewProjection * vec4(lightPosition + r * icosahedronCorner(uint(gl_VertexID)), 1.0);
+  clip.z = frame.sceneScale.w;
+  return clip;
 }
 
 void main() {
 #ifdef LGH_SORTED_LIGHTS
-  uint index = sortedLightIndex;
+  uint index = sortedLightIndex & ~kCrossingVolume;
+  bool crossing = (sortedLightIndex & kCrossingVolume) != 0u;
 #else
+  const bool crossing = false;
   uint index = pass.instanceOffset + uint(gl_InstanceID);
 #endif
 #ifdef LGH_S0_INPUT
@@ -164,6 +183,8 @@ void main() {
     clip = fullScreenCorner();
   else if (pass.volumeShape == kVolumeCube)
     clip = cubeCorner(2.0 * R);
+  else if (crossing)
+    clip = crossingCorner(2.0 * R);
   else
     clip = culledCorner(2.0 * R, tile);
   gl_Position = toTile(clip, tile);

@@ -34,6 +34,7 @@ CameraView makeCameraView(const Camera& camera, int width, int height) {
   const double aspect = double(std::max(width, 1)) / double(std::max(height, 1));
   const double znear = std::max(double(camera.znear), 1e-12);
   const double zfar = std::max(double(camera.zfar), znear * (1.0 + 1e-6));
+  v.znear = float(znear);
   const glm::dmat4 projection = reversedZPerspective(double(camera.yfov), aspect, znear, zfar);
   v.projection = glm::mat4(projection);
   v.cameraRelativeViewProjection = glm::mat4(projection * glm::dmat4(rotation));

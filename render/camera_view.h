@@ -21,6 +21,7 @@ struct CameraView {
   glm::mat4 view{1.0f}, projection{1.0f};
   glm::mat4 cameraRelativeViewProjection{1.0f};  // projection x rotation: clip = M (p - position)
   glm::mat4 worldViewProjection{1.0f};           // projection x view, composed in double
+  float znear = 0.01f;                           // clip w of the near plane: every rasterized surface has w >= znear
   glm::mat4 viewProjection() const { return worldViewProjection; }
 };
 

@@ -145,7 +145,7 @@ void Renderer::uploadFrameUniforms(const CameraView& view) {
   u.cameraPosition = glm::vec4(view.position, 1.0f);
   u.resolution = glm::uvec4(unsigned(image.width), unsigned(image.height), frameIndex_, 0u);
   const float footprint = 2.0f / (float(image.height) * std::max(std::abs(view.projection[1][1]), 1e-30f));
-  u.sceneScale = glm::vec4(scene_.scene().bounds.diagonal(), clampDistance(), footprint, 0.0f);
+  u.sceneScale = glm::vec4(scene_.scene().bounds.diagonal(), clampDistance(), footprint, view.znear);
   frameUniforms_.update(&u, sizeof(u));
   frameUniforms_.bindBase(GL_UNIFORM_BUFFER, LGH_UBO_FRAME);
 }

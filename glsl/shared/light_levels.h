@@ -145,6 +145,54 @@ GPU_FUNC float clipW(mat4 m, vec3 x) { return m[0][3] * x.x + m[1][3] * x.y + m[
 // the range. w <= 0 (behind the eye) maps to 0.
 GPU_FUNC float cullingDepth(float w, float scale) { return w > 0.0f ? w / (w + scale) : 0.0f; }
 
+// Inverse of cullingDepth for 0 <= depth < 1.
+GPU_FUNC float cullingDepthW(float depth, float scale) { return scale * depth / (1.0f - depth); }
+
+// The depth buffer the culled volumes are tested against holds volumeDepth, not cullingDepth: nearW / w,
+// reversed like the G-buffer's (1 at the near plane, towards 0 far away). 1 / w is affine in screen
+// space, so a planar polygon drawn with clip z = nearW and GL_ZERO_TO_ONE carries exactly this depth at
+// every pixel (and is clipped at w = nearW): the faces of a polyhedron bound their far side per pixel,
+// not just by one plane. Float keeps its relative precision at every distance. nearW: no surface is
+// nearer (the camera's near plane); nearer or behind the eye clamps to 1.
+GPU_FUNC float volumeDepth(float w, float nearW) { return w > nearW ? nearW / w : 1.0f; }
+
+// A sphere that reaches the eye plane w = 0 (the camera inside it or beside it) has no finite screen
+// bound (projectedSphereBounds fails). Its volume is then the back faces of a regular icosahedron
+// around it, at volumeDepth: with the camera inside, every pixel sees one back face at the polyhedron's
+// own far side, so only surfaces inside the polyhedron pass the depth test. Sorted draws flag such
+// lights (light_slices.comp) in the index's top bit and draw them as kCrossingVolumeVertices triangle
+// vertices.
+GPU_CONST uint kCrossingVolume = 0x80000000u;
+GPU_CONST uint kCrossingVolumeVertices = 60u;
+// The icosahedron with vertices (0, +-1, +-phi) and their cyclic permutations has inradius
+// phi^2 / sqrt(3) = 1.5115226...; scaled by r / kIcosahedronInradius its faces lie at least r from the
+// centre (rounded down: slightly farther).
+GPU_CONST float kIcosahedronInradius = 1.51152f;
+
+// Vertex k (0..11) of that icosahedron: k = 6 a + 3 b + c is the c-th cyclic permutation of
+// (0, -+1, -+phi) with the signs from a and b.
+GPU_FUNC vec3 icosahedronVertex(uint k) {
+  float a = (k / 6u) == 0u ? -1.0f : 1.0f;
+  float b = ((k / 3u) % 2u) == 0u ? -1.6180340f : 1.6180340f;
+  uint c = k % 3u;
+  return c == 0u ? vec3(0.0f, a, b) : c == 1u ? vec3(a, b, 0.0f) : vec3(b, 0.0f, a);
+}
+
+// Corner i (0..59) of its 20 triangles, counter-clockwise seen from outside: the vertex indices
+// packed four bits each, eight to a word.
+GPU_FUNC vec3 icosahedronCorner(uint i) {
+  uint w = i / 8u;
+  uint word = w == 0u   ? 0x20170210u
+              : w == 1u ? 0x17505606u
+              : w == 2u ? 0x83137128u
+              : w == 3u ? 0x73482642u
+              : w == 4u ? 0x49b3893bu
+              : w == 5u ? 0xa949846au
+              : w == 6u ? 0xa57b5a65u
+                        : 0x0000ab9bu;
+  return icosahedronVertex((word >> (4u * (i % 8u))) & 15u);
+}
+
 // Depth slices for culling surfaces in front of a volume (LightVolumePass): `slices` slices of equal
 // width in culling depth over [0, kSlicedDepth), the last one open-ended. A pixel's stencil holds the
 // number of boundaries at or before its surface's depth; a light drawn with stencil reference

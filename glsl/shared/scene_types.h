@@ -83,7 +83,8 @@ GPU_STRUCT(FrameUniforms) {
   vec4 cameraPosition;                // xyz; w unused
   uvec4 resolution;                   // width, height, frame index, 0
   vec4 sceneScale;                    // x: scene bounds diagonal, y: clamp distance d_c, z: pixel footprint per unit
-                                      // distance from the camera (2 tan(fovy/2) / height), w: unused
+                                      // distance from the camera (2 tan(fovy/2) / height), w: clip w of the near
+                                      // plane (no surface is nearer; the light pass's volumeDepth)
 };
 GPU_CHECK_SIZE(FrameUniforms, 240);
 

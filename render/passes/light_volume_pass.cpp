@@ -224,13 +224,15 @@ void LightVolumePass::bindInputs(const LightPassOptions& options, LightPassTarge
   if (options.pass.volumeCulling) culling_.bindPyramid();
 }
 
-// Additive blending, one fragment per covered pixel (cubes cull their front faces; rectangles and the
-// full-screen triangle face the camera), clipped to the light's tile. Culled volumes pass the depth
-// test only where the surface is not behind the sphere (GEQUAL against its far side) and, sorted by
-// slice, the stencil test only where it is not in front of the sphere's slice.
+// Additive blending, one fragment per covered pixel (cubes and icosahedra cull their front faces;
+// octagons and the full-screen triangle face the camera), clipped to the light's tile. Culled volumes
+// pass the depth test only where the surface is not behind the volume (LEQUAL: volumeDepth is reversed)
+// and, sorted by slice, the stencil test only where it is not in front of the sphere's slice. Depth in
+// GL_ZERO_TO_ONE (shared/light_levels.h, volumeDepth); cubes and the full-screen triangle sit at z = 0.
 void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options) {
   glDepthMask(GL_FALSE);
-  glDepthFunc(GL_GEQUAL);
+  glDepthFunc(GL_LEQUAL);
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glEnable(GL_BLEND);
   glBlendEquation(GL_FUNC_ADD);
   glBlendFunc(GL_ONE, GL_ONE);
@@ -263,6 +265,7 @@ void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPass
   glDisable(GL_CULL_FACE);
   glDisable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);  // other passes use GL's default
   glDisable(GL_BLEND);
   glDepthMask(GL_TRUE);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -3,11 +3,12 @@
 // as a light volume around the support of its blending function (d < 2R_l), the top level as a
 // full-screen triangle; each fragment adds B_l(d) x the light's irradiance at the pixel's surface into
 // an RGBA32F target with additive blending. Volumes are either the paper's cubes of half-size 2R_l
-// (no depth test: every pixel under the cube is shaded) or, with volume culling, the screen rectangle
+// (no depth test: every pixel under the cube is shaded) or, with volume culling, the screen octagon
 // of the 2R_l sphere depth-tested against the surfaces, so that a pixel whose surface lies behind the
 // sphere is rejected before shading, and skipped whole when every surface under it lies in front of
-// the sphere (a max-depth pyramid). Only zero-weight fragments go: the image and the shadow selection
-// are the same, only cheaper.
+// the sphere (a max-depth pyramid); a sphere that contains the camera (or reaches its eye plane) as
+// the far faces of an icosahedron around it, each at its own depth. Only zero-weight fragments go: the image and the
+// shadow selection are the same, only cheaper.
 //   in:  surfaces (G-buffer position and normal, or their interleaved tiles), the input lights S0
 //        and the hierarchy built over them, frame uniforms (LGH_UBO_FRAME)
 //   out: irradiance (rgb: W/m^2, albedo / pi gives radiance; a: fragments that shaded the pixel),

@@ -41,8 +41,9 @@ VolumeCulling::VolumeCulling()
   glVertexArrayAttribBinding(sortedVertexArray_.id(), 0, 0);
   glVertexArrayBindingDivisor(sortedVertexArray_.id(), 0, 1);
   glEnableVertexArrayAttrib(sortedVertexArray_.id(), 0);
-  gl::ensureSize(sliceCounts_, kCullingSlices * sizeof(GLuint));
-  gl::ensureSize(commands_, kCullingSlices * 4 * sizeof(GLuint));
+  // One bucket per slice and one more for the spheres that reach the eye plane (light_slices.comp).
+  gl::ensureSize(sliceCounts_, (kCullingSlices + 1) * sizeof(GLuint));
+  gl::ensureSize(commands_, (kCullingSlices + 1) * 4 * sizeof(GLuint));
 }
 
 const gl::Texture2D& VolumeCulling::depthStencil(glm::ivec2 size) {
@@ -65,18 +66,19 @@ void VolumeCulling::prepare(const gl::Texture2D& position, float sceneSize) {
 // A full-screen triangle writes each surface's depth and, with stencil export, its slice; without,
 // one instanced draw of full-screen triangles at the slice boundaries counts in the stencil the
 // boundaries at or before each surface (slices - 1 fill passes: cheap on a GPU, not on llvmpipe).
-// Colour untouched.
+// Depth is volumeDepth, reversed (far = 0), with GL_ZERO_TO_ONE. Colour untouched.
 void VolumeCulling::writeDepthAndSlices(const gl::Texture2D& position, float sceneSize) {
   if (!depthProgram_) {
     gl::Defines defines;
     if (stencilExport_) defines.emplace_back("LGH_STENCIL_EXPORT", "1");
     depthProgram_ = gl::Program::graphics("display.vert", "light_depth.frag", defines);
   }
-  const float clearDepth = 1.0f;
+  const float clearDepth = 0.0f;
   GLint framebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
   glClearNamedFramebufferfi(GLuint(framebuffer), GL_DEPTH_STENCIL, 0, clearDepth, 0);
   glColorMaski(0, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_ALWAYS);
   glDepthMask(GL_TRUE);
@@ -93,15 +95,17 @@ void VolumeCulling::writeDepthAndSlices(const gl::Texture2D& position, float sce
 
   if (!stencilExport_) {
     if (!boundaryProgram_) boundaryProgram_ = gl::Program::graphics("slice_boundaries.vert", "no_color.frag");
-    glDepthFunc(GL_LEQUAL);  // boundary <= surface depth: one more boundary before the surface
+    glDepthFunc(GL_GEQUAL);  // boundary at or before the surface (reversed depth): one more boundary
     glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
     boundaryProgram_.use();
     boundaryProgram_.set("slices", kCullingSlices);
+    boundaryProgram_.set("depthScale", sceneSize);
     glDrawArraysInstanced(GL_TRIANGLES, 0, 3, GLsizei(kCullingSlices - 1));
   }
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glDisable(GL_STENCIL_TEST);
   glDisable(GL_DEPTH_TEST);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);  // other passes use GL's default
   glColorMaski(0, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
@@ -171,6 +175,13 @@ void VolumeCulling::bindPyramid() const { pyramid_.bindTexture(LGH_TEXTURE_SURFA
 void VolumeCulling::drawSorted() const {
   glBindVertexArray(sortedVertexArray_.id());
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, commands_.id());
+  // First the spheres that reach the eye plane (their near side is in slice 0: no stencil test), as
+  // icosahedra whose back faces are kept; then the octagons slice by slice.
+  glEnable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+  glCullFace(GL_FRONT);
+  glDrawArraysIndirect(GL_TRIANGLES, reinterpret_cast<const void*>(uintptr_t(kCullingSlices) * 4 * sizeof(GLuint)));
+  glDisable(GL_CULL_FACE);
   glEnable(GL_STENCIL_TEST);
   glStencilMask(0);
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);

@@ -1,12 +1,15 @@
 #pragma once
 // What the light pass's culled volumes are tested against (LightVolumePass, volume culling on):
-//   * a depth-stencil target in the pass's (tiled) layout: depth = each surface's culling depth
-//     (clip w mapped by cullingDepth, glsl/shared/light_levels.h), stencil = its depth slice;
-//   * a max-depth pyramid of the same depths, for skipping volumes hidden behind every surface under them;
+//   * a depth-stencil target in the pass's (tiled) layout: depth = each surface's volumeDepth (clip w
+//     mapped to nearW / w, reversed, glsl/shared/light_levels.h), stencil = its depth slice (of its
+//     cullingDepth, w / (w + scene size));
+//   * a max-cullingDepth pyramid, for skipping volumes hidden behind every surface under them;
 //   * the volumes of one draw sorted by the slice of their nearest depth, drawn slice by slice with that
-//     slice as stencil reference.
-// Per pixel the depth test (GEQUAL against the sphere's far depth) rejects surfaces behind a volume and
-// the stencil test (reference <= stencil) surfaces in front of its slice, both before shading.
+//     slice as stencil reference; spheres that reach the eye plane in a bucket of their own, drawn as
+//     the back faces of icosahedra.
+// Per pixel the depth test (LEQUAL: the volume's far depth not nearer than the surface) rejects surfaces
+// behind a volume and the stencil test (reference <= stencil) surfaces in front of its slice, both
+// before shading. Depth draws use GL_ZERO_TO_ONE (float keeps nearW / w's precision).
 // Only fragments whose surface is farther than 2R from the light are rejected: their weight is zero.
 
 #include <glm/glm.hpp>
@@ -41,9 +44,10 @@ class VolumeCulling {
   void sortBySlice(const SortInputs& inputs);
   // Binds the pyramid to texture unit 2 (light_volume.vert reads it).
   void bindPyramid() const;
-  // The sorted volumes (8-vertex strips), one indirect draw per slice with its stencil reference; the
-  // light index comes from the vertex attribute 0 (LGH_SORTED_LIGHTS in light_volume.vert). Needs the
-  // depth test set up by the caller; sets and restores the stencil test.
+  // The sorted volumes: the crossing spheres' icosahedra (front faces culled), then the octagons
+  // (8-vertex strips), one indirect draw per slice with its stencil reference; the light index comes
+  // from the vertex attribute 0 (LGH_SORTED_LIGHTS in light_volume.vert). Needs the depth test and
+  // GL_ZERO_TO_ONE set up by the caller; sets and restores the stencil test, leaves face culling off.
   void drawSorted() const;
 
  private:

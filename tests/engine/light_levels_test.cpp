@@ -8,7 +8,9 @@
 
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 #include <random>
+#include <utility>
 
 #include "lgh/blending.h"
 
@@ -152,6 +154,71 @@ TEST(LightLevels, CullingDepthIsMonotonicInW) {
     EXPECT_LT(d, 1.0f);
     EXPECT_GE(d, last);
     last = d;
+  }
+}
+
+// The depth culled volumes are tested with is reversed (nearer is larger) and, being nearW / w, affine
+// in screen space: over a triangle in front of the camera, the depth at a point equals the screen-space
+// interpolation of its corners' depths, as the rasterizer computes it.
+TEST(LightLevels, VolumeDepthIsReversedAndAffineOnScreen) {
+  const float nearW = 0.05f;
+  EXPECT_EQ(gpu::volumeDepth(-1.0f, nearW), 1.0f);
+  EXPECT_EQ(gpu::volumeDepth(0.01f, nearW), 1.0f);
+  EXPECT_FLOAT_EQ(gpu::volumeDepth(0.5f, nearW), 0.1f);
+  const glm::mat4 m = glm::perspective(1.0f, 1.6f, nearW, 100.0f);
+  const glm::vec3 corners[3] = {{-3.0f, 1.0f, -2.0f}, {4.0f, -1.0f, -9.0f}, {0.5f, 2.0f, -40.0f}};
+  glm::vec2 screen[3];
+  float depth[3];
+  for (int k = 0; k < 3; ++k) {
+    const glm::vec4 clip = m * glm::vec4(corners[k], 1.0f);
+    screen[k] = glm::vec2(clip) / clip.w;
+    depth[k] = gpu::volumeDepth(gpu::clipW(m, corners[k]), nearW);
+  }
+  for (glm::vec3 b : {glm::vec3(0.2f, 0.3f, 0.5f), glm::vec3(0.7f, 0.1f, 0.2f), glm::vec3(0.05f, 0.05f, 0.9f)}) {
+    // The point of the triangle that projects to screen-space barycentrics b.
+    const glm::vec3 perspective =
+        b / glm::vec3(gpu::clipW(m, corners[0]), gpu::clipW(m, corners[1]), gpu::clipW(m, corners[2]));
+    const glm::vec3 w3 = perspective / (perspective.x + perspective.y + perspective.z);
+    const glm::vec3 point = w3.x * corners[0] + w3.y * corners[1] + w3.z * corners[2];
+    const glm::vec4 clip = m * glm::vec4(point, 1.0f);
+    const glm::vec2 onScreen = b.x * screen[0] + b.y * screen[1] + b.z * screen[2];
+    EXPECT_NEAR(clip.x / clip.w, onScreen.x, 1e-5f);
+    EXPECT_NEAR(clip.y / clip.w, onScreen.y, 1e-5f);
+    const float interpolated = b.x * depth[0] + b.y * depth[1] + b.z * depth[2];
+    EXPECT_NEAR(gpu::volumeDepth(clip.w, nearW), interpolated, 1e-5f * interpolated);
+  }
+}
+
+// The crossing spheres' icosahedron: a closed surface (every edge shared by two faces, once each way),
+// its faces counter-clockwise seen from outside, each at least kIcosahedronInradius from the centre, so
+// that scaled by r / kIcosahedronInradius it contains the sphere of radius r.
+TEST(LightLevels, IcosahedronEnclosesTheSphere) {
+  std::map<std::pair<int, int>, int> edges;
+  auto key = [](glm::vec3 v) {
+    return int(std::lround(v.x * 8 + 64)) * 1000000 + int(std::lround(v.y * 8 + 64)) * 1000 +
+           int(std::lround(v.z * 8 + 64));
+  };
+  float nearest = 1e30f;
+  for (unsigned f = 0; f < gpu::kCrossingVolumeVertices / 3; ++f) {
+    const glm::vec3 a = gpu::icosahedronCorner(3 * f), b = gpu::icosahedronCorner(3 * f + 1),
+                    c = gpu::icosahedronCorner(3 * f + 2);
+    for (const glm::vec3& v : {a, b, c}) EXPECT_NEAR(glm::length(v), 1.9021130f, 1e-5f);
+    EXPECT_NEAR(glm::length(b - a), 2.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(c - b), 2.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(a - c), 2.0f, 1e-5f);
+    const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+    const float distance = glm::dot(n, a);
+    EXPECT_GT(distance, 0.0f) << "face " << f << " faces inwards";
+    nearest = std::min(nearest, distance);
+    const glm::vec3 corners[3] = {a, b, c};
+    for (int e = 0; e < 3; ++e) ++edges[{key(corners[e]), key(corners[(e + 1) % 3])}];
+  }
+  EXPECT_GE(nearest, gpu::kIcosahedronInradius);
+  EXPECT_LT(nearest, gpu::kIcosahedronInradius * 1.0001f);
+  EXPECT_EQ(edges.size(), 60u);
+  for (const auto& [edge, count] : edges) {
+    EXPECT_EQ(count, 1);
+    EXPECT_EQ(edges.count({edge.second, edge.first}), 1u);
   }
 }
 

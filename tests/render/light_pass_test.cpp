@@ -245,12 +245,16 @@ TEST_F(LightPassTest, InterleavedBruteForceDrawsEachLightIntoOneTile) {
 // Volume culling (screen rectangles of the 2R spheres, depth-tested against the surfaces) skips only
 // fragments whose blending weight is zero: the image equals the cube path's to 1e-4 per pixel, the
 // fragments that shade are the same ones (same count), and fewer are rasterized. Checked at 1x1 and
-// 4x4 (the tiles need their own depth), from S1 and from S0, and with the camera inside volumes.
+// 4x4 (the tiles need their own depth), from S1 and from S0, and with the camera inside volumes, where
+// the spheres around the camera are drawn as the far faces of icosahedra: with the whole viewport
+// instead (at the sphere's far depth) the camera-inside case's efficiency was 0.55 and Sponza's 0.49;
+// the icosahedra give 0.73 on both.
 struct CullingCase {
   const char* name;
   int interleave, startLevel;
   float alpha;
   bool cameraInside;
+  double minEfficiency = 0.0;  // shaded / rasterized fragments with culling
 };
 
 double maxRelativeDifference(const ImageRGBA& a, const ImageRGBA& b) {
@@ -300,13 +304,14 @@ void expectCullingKeepsTheImage(const SceneOnGpu& s, const CullingCase& c, int v
   EXPECT_NEAR(culled.lights.shadedPerPixel, cubes.lights.shadedPerPixel, 1e-6 * cubes.lights.shadedPerPixel);
   EXPECT_LT(culled.lights.rasterizedPerPixel, cubes.lights.rasterizedPerPixel);
   EXPECT_LE(culled.lights.shadedPerPixel, culled.lights.rasterizedPerPixel);
+  EXPECT_GE(culled.lights.efficiency(), c.minEfficiency);
 }
 
 TEST_F(LightPassTest, CulledVolumesShadeWhatCubesShade) {
   SceneOnGpu s(sourceDir() / "data/cornell_box.gltf");
   for (const CullingCase& c :
        {CullingCase{"1x1 from S1", 1, 1, 1.0f, false}, CullingCase{"4x4 from S1", 4, 1, 1.0f, false},
-        CullingCase{"2x2 from S0", 2, 0, 1.0f, false}, CullingCase{"camera inside, alpha 4", 1, 1, 4.0f, true},
+        CullingCase{"2x2 from S0", 2, 0, 1.0f, false}, CullingCase{"camera inside, alpha 4", 1, 1, 4.0f, true, 0.65},
         CullingCase{"camera inside, 4x4 from S0", 4, 0, 2.0f, true}})
     expectCullingKeepsTheImage(s, c, 20000);
 }
@@ -315,7 +320,7 @@ TEST_F(LightPassTest, CulledVolumesShadeWhatCubesShadeOnSponza) {
   LGH_REQUIRE_SHARED_SCENE(path, "sponza_sun/sponza_sun.gltf");
   SceneOnGpu s(path);
   for (const CullingCase& c :
-       {CullingCase{"Sponza 1x1", 1, 1, 1.0f, false}, CullingCase{"Sponza 4x4", 4, 1, 1.0f, false}})
+       {CullingCase{"Sponza 1x1", 1, 1, 1.0f, false, 0.6}, CullingCase{"Sponza 4x4", 4, 1, 1.0f, false, 0.6}})
     expectCullingKeepsTheImage(s, c, 20000);
 }
 
