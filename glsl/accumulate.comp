@@ -12,6 +12,12 @@
 // irradiance of this frame stays), and the accumulated ratio sum(lum E r) / sum(lum E) (a ratio
 // estimator, weighted as the a-trous filter weighs its taps) with N in alpha for the filter.
 // With N = 1 the outputs are this frame's values bit for bit.
+// Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
+// irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, but
+// over a window that shrinks with N. The dealing rotates by one tile per frame, so N consecutive
+// frames give a pixel N consecutive tile classes, and the neighbour dy rows away sees them shifted by
+// n dy: for N < n the n x n window counts every class N times; from N >= n on a vertical window of n
+// rows covers every class (exactly floor(N / n) or one more times), with n times less blur.
 #include "shared/bindings.h"
 #include "shared/color.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -30,6 +36,9 @@ layout(rgba32f, binding = LGH_IMAGE_ACCUM_RATIO_SUM) uniform writeonly image2D r
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_POSITION) uniform writeonly image2D positionOut;
 layout(rgba16f, binding = LGH_IMAGE_ACCUM_NORMAL) uniform writeonly image2D normalOut;
 
+uniform int stage;                          // 0: sums and outputs; 1: resolve of incomplete interleaved sums
+uniform float normalPower;                  // stage 1: neighbour weight max(0, n.n')^normalPower
+uniform float planeSigma;                   // stage 1: tangent-plane distance in pixel footprints at weight e^-1/2
 uniform int hasHistory;                     // 0: restart (every pixel's history is empty)
 uniform int shadowed;                       // the ratio image holds this frame's raw ratio
 uniform mat4 previousViewProjection;        // camera-relative: clip = M (p - previousCameraPosition)
@@ -60,10 +69,46 @@ ivec2 historyPixel(Surface s, ivec2 size) {
   return q;
 }
 
+// Stage 1: the irradiance of a pixel whose sum lacks some tiles, from the window's new sums (bound as
+// historyIrradiance).
+void resolveIncomplete(ivec2 pixel, ivec2 size) {
+  Surface s = loadSurface(pixel);
+  float frames = texelFetch(historyIrradiance, pixel, 0).a;
+  uint n = tilesPerAxis;
+  if (!s.valid || frames < 1.5 || frames >= float(n * n)) return;
+  float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30);
+  int half_ = int(n / 2u);
+  bool even = (n & 1u) == 0u;
+  int halfX = frames >= float(n) ? 0 : half_;  // from n frames on: one column of n rows
+  vec3 sum = vec3(0.0);
+  float weightSum = 0.0;
+  for (int dy = -half_; dy <= half_; ++dy) {
+    for (int dx = -halfX; dx <= halfX; ++dx) {
+      ivec2 q = pixel + ivec2(dx, dy);
+      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+      vec4 qSum = texelFetch(historyIrradiance, q, 0);
+      vec4 qPosition = texelFetch(gPosition, q, 0);
+      if (qPosition.w == 0.0 || qSum.a == 0.0) continue;
+      float window = (even && halfX > 0 && abs(dx) == half_ ? 0.5 : 1.0) * (even && abs(dy) == half_ ? 0.5 : 1.0);
+      float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
+      float w = window * pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) *
+                exp(-0.5 * plane * plane);
+      sum += w * qSum.rgb / qSum.a;
+      weightSum += w;
+    }
+  }
+  // The pixel's own tap has weight 1.
+  imageStore(irradiance, pixel, vec4(sum / weightSum, imageLoad(irradiance, pixel).a));
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = ivec2(frame.resolution.xy);
   if (any(greaterThanEqual(pixel, size))) return;
+  if (stage == 1) {
+    resolveIncomplete(pixel, size);
+    return;
+  }
   Surface s = loadSurface(pixel);
   imageStore(positionOut, pixel, vec4(s.position, s.valid ? 1.0 : 0.0));
   imageStore(normalOut, pixel, vec4(s.normal, 0.0));
@@ -97,7 +142,7 @@ void main() {
   imageStore(ratioSumOut, pixel, ratioSum);
   float frames = irradianceSum.a;
   if (frames < 1.5) return;  // this frame only: its values stay as they are
-  // Before n^2 frames the sum lacks some of the lights' tiles: the resolved (spatially filled) irradiance stays.
+  // Before n^2 frames the sum lacks some of the lights' tiles: stage 1 resolves it.
   if (frames >= float(tilesPerAxis * tilesPerAxis))
     imageStore(irradiance, pixel, vec4(irradianceSum.rgb / frames, imageLoad(irradiance, pixel).a));
   if (shadowed != 0) {

@@ -1,5 +1,6 @@
 #include "render/passes/accumulation_pass.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -47,8 +48,19 @@ void AccumulationPass::execute(const GBuffer& gbuffer, const CameraView& view, c
   program_.set("maxFrames", float(settings.maxFrames));
   program_.set("planeTolerance", kHistoryPlaneTolerance);
   program_.set("normalTolerance", kHistoryNormalTolerance);
+  program_.set("stage", 0);
   program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  if (layout.tilesPerAxis > 1) {
+    // Pixels whose sums lack some tiles: resolved from the new sums, over a window that shrinks with N.
+    const InterleaveFilter filter;
+    next.irradianceSum.bindTexture(LGH_TEXTURE_ACCUM_IRRADIANCE_SUM);
+    program_.set("stage", 1);
+    program_.set("normalPower", filter.normalPower);
+    program_.set("planeSigma", std::max(filter.planeSigma, 1e-6f));
+    program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  }
   gl::checkErrors("accumulation");
   current_ = 1 - current_;
   hasHistory_ = true;
