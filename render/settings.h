@@ -70,9 +70,10 @@ struct ShadowFilterSettings {
 // lights do not change, each frame's raw irradiance and shadow ratio are averaged with the earlier
 // frames' (reprojected through the G-buffer), so the error keeps falling instead of staying at one
 // frame's. With n x n interleaving the light-to-tile dealing rotates every frame so that n^2
-// frames see every light at every pixel.
+// frames see every light at every pixel. Off by default, so that each render() is one frame as
+// before (pinned frames, benchmarks); the viewer turns it on, and lgh-render with --frames > 1.
 struct AccumulationSettings {
-  bool enabled = true;
+  bool enabled = false;
   int maxFrames = 1024;     // history length cap: beyond it the oldest frames fade out (moving average)
   float filterFade = 0.5f;  // a-trous ratio sigma x N^-filterFade for N accumulated frames (0: no fade)
 };
@@ -162,7 +163,8 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(accumulation.enabled,
         SettingInfo{"accumulate",
                     "average the indirect light's raw estimates over frames while the camera and lights are still "
-                    "(history reprojected through the G-buffer; interleaving rotated per frame)"});
+                    "(history reprojected through the G-buffer; interleaving rotated per frame; default on in the "
+                    "viewer and in lgh-render with --frames > 1)"});
   visit(accumulation.maxFrames,
         SettingInfo{"accumulate-max-frames", "frames the history holds at most; older ones fade out", 1, 1 << 20});
   visit(accumulation.filterFade,

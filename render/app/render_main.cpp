@@ -48,7 +48,7 @@ void addOptions(CLI::App& app, Command& c) {
   app.add_option("--aov", c.aovOutputs, "also write an AOV: NAME=FILE, NAME one of " + joined(lgh::aovNames()));
   app.add_option("--frames", c.frames,
                  "render this many frames from the still camera (same VPLs, new shadow samples and interleaving "
-                 "rotation each) and write the last: with --accumulate, their accumulated estimate")
+                 "rotation each) and write the last: their accumulated estimate (unless --accumulate=false)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1 << 20));
   app.add_flag("-q,--quiet", c.quiet, "print nothing but errors");
@@ -119,6 +119,8 @@ int run(int argc, char** argv) {
   Command c;
   addOptions(app, c);
   CLI11_PARSE(app, argc, argv);
+  // More than one frame is asked for to accumulate them, unless --accumulate says otherwise.
+  if (c.frames > 1 && app.count("--accumulate") == 0) c.settings.accumulation.enabled = true;
   const lgh::RenderSettings& settings = c.settings;
   // Everything cheap is validated before any work: a bad AOV name or extension fails in milliseconds.
   const std::map<lgh::Aov, std::filesystem::path> aovs = checkedAovs(c);

@@ -20,6 +20,7 @@ class AccumulationTest : public GLTest {
     settings.image.height = 54;
     settings.inputLights.vpls = 3000;
     settings.inputLights.bounces = 1;
+    settings.accumulation.enabled = true;
   }
   CameraView view(const Camera& camera) const {
     return makeCameraView(camera, settings.image.width, settings.image.height);

@@ -62,8 +62,6 @@ TEST_F(ShadowTest, SelectionFrequenciesFollowContributions) {
       settings.lightPass.bruteForce = true;  // every light at every pixel: selection among all S0 lights
       settings.lightPass.interleave = n;
       settings.shadows.samples = k;
-      // One fixed dealing of lights to tiles (accumulating frames rotate it), as the expectation assumes.
-      settings.accumulation.enabled = false;
       Renderer renderer(gpu, settings);
       const CameraView view = makeCameraView(resolveCamera(scene, settings), 8, 8);
       renderer.render(view);
