@@ -36,6 +36,7 @@ BenchRenderer::BenchRenderer(const SceneGpu& scene, const RenderSettings& settin
 
 FrameStats BenchRenderer::render(const RenderSettings& settings) {
   renderer_.setSettings(settings);
+  renderer_.restartAccumulation();  // one frame, never averaged with the previous call's
   return renderer_.render(view_);
 }
 

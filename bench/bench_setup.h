@@ -35,7 +35,8 @@ class BenchRenderer {
 
   Renderer& renderer() { return renderer_; }
   const CameraView& view() const { return view_; }
-  // One frame with `settings` (S0 and the hierarchy are rebuilt when their settings changed).
+  // One frame with `settings` (S0 and the hierarchy are rebuilt when their settings changed), not
+  // accumulated with earlier ones.
   FrameStats render(const RenderSettings& settings);
   // Renders with the VPL budget settings.inputLights.vpls raised until the VPLs made meet `target`
   // within 2% (light paths that leave the scene deposit nothing); leaves that budget in `settings`.

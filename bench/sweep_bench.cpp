@@ -142,6 +142,13 @@ void addGridOptions(CLI::App& command, SweepOptions& options) {
       ->delimiter(',')
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
+  command
+      .add_option("--frames", options.frames,
+                  "still frames accumulated before each measured one, comma-separated (1: a single frame; more "
+                  "turn --accumulate on)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
   command.add_option("--repeats", options.repeats, "timed frames per point")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
@@ -214,7 +221,7 @@ std::vector<PointSpec> applyReadmePreset(SweepOptions& options, const std::funct
   if (!given("--vpls")) options.vpls = {10000, 100000};
   if (!given("--scaling-vpls")) options.scalingVpls = {1000, 10000, 100000, 1000000};
   if (!given("--out")) options.outDir = (fs::path(LGH_SOURCE_DIR) / "bench" / "results").string();
-  for (const char* grid : {"--alpha", "--start-level", "--interleave", "--shadow-samples", "--filter"})
+  for (const char* grid : {"--alpha", "--start-level", "--interleave", "--shadow-samples", "--filter", "--frames"})
     if (given(grid)) return {};
   return readmePoints();
 }
@@ -272,7 +279,8 @@ int runSweepBench(SweepOptions options) {
   if (points.empty()) {
     std::vector<bool> filters;
     for (const std::string& f : options.filter) filters.push_back(f == "on");
-    points = grid(options.alphas, options.startLevels, options.interleave, options.shadowSamples, filters);
+    points =
+        grid(options.alphas, options.startLevels, options.interleave, options.shadowSamples, filters, options.frames);
   }
   for (size_t m : options.uniformLights)
     if (m == 0) throw std::runtime_error("--uniform-lights: subset sizes must be >= 1");

@@ -33,6 +33,7 @@ struct SweepOptions {
   std::vector<int> interleave{1, 4};
   std::vector<int> shadowSamples{4};
   std::vector<std::string> filter{"on"};  // on: the a-trous filter (filter-passes); off: the raw ratio
+  std::vector<int> frames{1};             // still frames accumulated per measurement (the last is measured)
   int repeats = 3;
   // Reference: pixel fraction (0: automatic, all pixels unless that exceeds referenceBudget pairs).
   double referencePixels = 0;

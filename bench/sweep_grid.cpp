@@ -16,8 +16,8 @@ void appendUnique(std::vector<PointSpec>& to, const std::vector<PointSpec>& from
 }  // namespace
 
 bool PointSpec::operator<(const PointSpec& o) const {
-  return std::tie(startLevel, alpha, interleave, k, filter) <
-         std::tie(o.startLevel, o.alpha, o.interleave, o.k, o.filter);
+  return std::tie(startLevel, alpha, interleave, k, filter, frames) <
+         std::tie(o.startLevel, o.alpha, o.interleave, o.k, o.filter, o.frames);
 }
 
 RenderSettings PointSpec::applied(const RenderSettings& base) const {
@@ -27,17 +27,21 @@ RenderSettings PointSpec::applied(const RenderSettings& base) const {
   s.lightPass.interleave = interleave;
   s.shadows.samples = k;
   s.filter.passes = filter ? base.filter.passes : 0;
+  // More than one frame is an accumulation, whatever the base says.
+  if (frames > 1) s.accumulation.enabled = true;
   return s;
 }
 
 std::vector<PointSpec> grid(const std::vector<float>& alphas, const std::vector<int>& starts,
-                            const std::vector<int>& ns, const std::vector<int>& ks, const std::vector<bool>& filters) {
+                            const std::vector<int>& ns, const std::vector<int>& ks, const std::vector<bool>& filters,
+                            const std::vector<int>& frames) {
   std::vector<PointSpec> points;
   for (int s : starts)
     for (float a : alphas)
       for (int n : ns)
         for (int k : ks)
-          for (bool f : filters) points.push_back({a, s, n, k, f});
+          for (bool f : filters)
+            for (int count : frames) points.push_back({a, s, n, k, f, count});
   return points;
 }
 
@@ -55,14 +59,14 @@ std::string settingsLabel(const PointSpec& p) {
   char buffer[96];
   std::snprintf(buffer, sizeof buffer, "a=%g S%d %dx%d k=%d%s", double(p.alpha), p.startLevel, p.interleave,
                 p.interleave, p.k, p.filter || p.k == 0 ? "" : " raw");
-  return buffer;
+  return p.frames > 1 ? std::string(buffer) + " " + std::to_string(p.frames) + " frames" : std::string(buffer);
 }
 
 std::string fileLabel(const PointSpec& p) {
   char buffer[96];
   std::snprintf(buffer, sizeof buffer, "a%g_s%d_n%d_k%d_%s", double(p.alpha), p.startLevel, p.interleave, p.k,
                 p.filter ? "filter" : "raw");
-  return buffer;
+  return p.frames > 1 ? std::string(buffer) + "_f" + std::to_string(p.frames) : std::string(buffer);
 }
 
 SceneSpec parseSceneSpec(const std::string& text) {

@@ -15,6 +15,7 @@ struct PointSpec {
   float alpha = 1.0f;
   int startLevel = 1, interleave = 1, k = 4;
   bool filter = true;  // the a-trous filter over the shadow ratio; off: the raw ratio
+  int frames = 1;      // still frames accumulated (settings.accumulation); the last one is measured
   bool operator<(const PointSpec& o) const;
   bool operator==(const PointSpec& o) const { return !(*this < o) && !(o < *this); }
   // `base` with this point's settings.
@@ -23,13 +24,14 @@ struct PointSpec {
 
 // Every combination, start level slowest.
 std::vector<PointSpec> grid(const std::vector<float>& alphas, const std::vector<int>& starts,
-                            const std::vector<int>& ns, const std::vector<int>& ks, const std::vector<bool>& filters);
+                            const std::vector<int>& ns, const std::vector<int>& ks, const std::vector<bool>& filters,
+                            const std::vector<int>& frames = {1});
 // The README's sweep: alpha x start level x interleaving (1, 4), without shadows (k = 0) and with k = 4
 // and the filter; then one parameter at a time around the defaults (alpha 1, S1, 1x1, k 4).
 std::vector<PointSpec> readmePoints();
 
-std::string settingsLabel(const PointSpec& p);  // "a=1 S1 4x4 k=4", " raw" without the filter
-std::string fileLabel(const PointSpec& p);      // "a1_s1_n4_k4_filter"
+std::string settingsLabel(const PointSpec& p);  // "a=1 S1 4x4 k=4", " raw" without the filter, " 16 frames"
+std::string fileLabel(const PointSpec& p);      // "a1_s1_n4_k4_filter", "_f16" for 16 frames
 
 struct SceneSpec {
   std::filesystem::path path;

@@ -88,7 +88,7 @@ constexpr const char* kCsvHeader =
     "shadow_samples,filter,subset_lights,levels,grid_lights,fragments_per_pixel,shaded_per_pixel,time_ms,time_ms_min,"
     "time_ms_max,time_unshadowed_ms,build_ms,light_pass_ms,interleave_ms,shadow_rays_ms,shadow_filter_ms,frame_ms,"
     "extrapolated,rmse_unshadowed,psnr_unshadowed,rmse_shadowed,psnr_shadowed,rmse_shadowed_min,rmse_shadowed_max,"
-    "reference_pixels,others_cpu,image";
+    "reference_pixels,others_cpu,image,frames";
 
 std::string num(double v) {
   if (!std::isfinite(v)) return std::string();
@@ -148,7 +148,8 @@ std::vector<std::string> csvCells(const Case& c, const Measurement& m) {
         shadowed ? num(rs.max) : "",
         c.scaling ? "" : std::to_string(c.reference.pixels),
         num(std::round(m.othersCpu * 100) / 100),
-        m.image})
+        m.image,
+        m.lgh() ? std::to_string(m.point.frames) : ""})
     cells.push_back(std::move(cell));
   return cells;
 }

@@ -109,7 +109,10 @@ void SweepRunner::tick() {
   if (progress_) progress_->update(double(done_));
 }
 
-FrameStats SweepRunner::timedFrame(BenchRenderer& bench, Measurement& m) {
+FrameStats SweepRunner::timedFrame(BenchRenderer& bench, Measurement& m, int frames) {
+  // Each repeat is a new estimate: the frames before the timed one build its history, untimed.
+  bench.renderer().restartAccumulation();
+  for (int f = 1; f < frames; ++f) bench.renderer().render(bench.view());
   FrameStats stats;
   m.othersCpu = std::max(m.othersCpu, sampler_.sample([&] { stats = bench.renderer().render(bench.view()); }));
   return stats;
@@ -156,7 +159,7 @@ Measurement SweepRunner::measureLgh(BenchRenderer& bench, const RenderSettings& 
   s.lightPass.overdraw = false;
   bench.renderer().setSettings(s);
   for (int r = 0; r < options_.repeats; ++r) {
-    const FrameStats stats = timedFrame(bench, m);
+    const FrameStats stats = timedFrame(bench, m, point.frames);
     if (stats.nonFinitePixels > 0)
       fail(std::to_string(stats.nonFinitePixels) + " NaN/Inf pixels at " + settingsLabel(point));
     m.addPassTimes(stats);

@@ -54,8 +54,9 @@ class SweepRunner {
                          const reference::ReferenceImage* ref, const CaseImages* images);
   Measurement measureBruteForce(BenchRenderer& bench, const RenderSettings& base, size_t lights,
                                 const reference::ReferenceImage* ref, const char* series);
-  // One timed frame with the renderer's settings; records the others' share of the machine in m.
-  FrameStats timedFrame(BenchRenderer& bench, Measurement& m);
+  // One timed frame with the renderer's settings, after frames - 1 untimed ones accumulated from a
+  // fresh history; records the others' share of the machine in m.
+  FrameStats timedFrame(BenchRenderer& bench, Measurement& m, int frames = 1);
   void check(const Case& c);
   void fail(const std::string& message);
   void tick();

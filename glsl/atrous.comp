@@ -3,6 +3,9 @@
 // estimator (Heitz et al. 2018): the shadowed (S = U x raw ratio) and unshadowed (U) luminances are
 // filtered with the same weights and divided at the end, so the ratio is averaged in proportion to
 // the light each neighbour receives.
+// With temporal accumulation the ratio holds N frames (alpha of the raw ratio): its noise falls as
+// 1/sqrt(N), and the ratio sigma shrinks as N^-sigmaFade so that the filter's blur across shadow
+// edges does not become the accumulated estimate's error floor.
 //   stage 0: (raw ratio, irradiance) -> (S, U)
 //   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U)
 //   stage 2: (S, U) -> filtered ratio S / U; the raw ratio where no neighbour received light (U = 0)
@@ -21,6 +24,7 @@ uniform float normalPower;   // weight max(0, n.n')^normalPower
 uniform float planeSigma;    // tangent-plane distance, in pixel footprints x stepSize, at weight e^-1/2
 uniform float ratioSigma;    // ratio difference at weight e^-1/2 (from the second pass on: the first
                              // pass sees raw ratios, with k = 1 only 0 or 1, which would stop every tap)
+uniform float sigmaFade;     // ratio sigma x N^-sigmaFade for a ratio accumulated over N frames
 
 
 void main() {
@@ -29,8 +33,9 @@ void main() {
   if (any(greaterThanEqual(pixel, size))) return;
   if (stage == 0) {
     float u = max(luminance(texelFetch(irradiance, pixel, 0).rgb), 0.0);
-    float r = texelFetch(signalIn, pixel, 0).r;
-    imageStore(signalOut, pixel, vec4(u * r, u, r, 1.0));
+    vec4 raw = texelFetch(signalIn, pixel, 0);
+    // alpha: frames accumulated (1 for a single frame), carried through the passes for the fade
+    imageStore(signalOut, pixel, vec4(u * raw.r, u, raw.r, max(raw.a, 1.0)));
     return;
   }
   vec4 centre = texelFetch(signalIn, pixel, 0);
@@ -50,6 +55,7 @@ void main() {
   const float kernel[3] = float[](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
   float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30) * float(stepSize);
   float centreRatio = centre.g > 0.0 ? centre.r / centre.g : centre.b;
+  float sigma = ratioSigma * pow(centre.a, -sigmaFade);
   vec2 sum = vec2(0.0);
   float weightSum = 0.0;
   for (int dy = -2; dy <= 2; ++dy) {
@@ -61,7 +67,7 @@ void main() {
       vec4 v = texelFetch(signalIn, q, 0);
       float qRatio = v.g > 0.0 ? v.r / v.g : v.b;
       float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
-      float dr = stepSize > 1 ? (qRatio - centreRatio) / ratioSigma : 0.0;
+      float dr = stepSize > 1 ? (qRatio - centreRatio) / sigma : 0.0;
       float w = kernel[abs(dx)] * kernel[abs(dy)] *
                 pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) *
                 exp(-0.5 * (plane * plane + dr * dr));
@@ -70,5 +76,5 @@ void main() {
     }
   }
   // The centre tap has weight (3/8)^2 > 0, so weightSum > 0. b keeps the raw ratio for the guards.
-  imageStore(signalOut, pixel, vec4(sum / weightSum, centre.b, 1.0));
+  imageStore(signalOut, pixel, vec4(sum / weightSum, centre.b, centre.a));
 }

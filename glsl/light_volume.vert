@@ -75,11 +75,12 @@ struct TileMap {
   vec2 scale, offset, lo, hi;
 };
 
-// Interleaving: this light belongs to tile (k mod n^2) of its level, k its index within the level.
+// Interleaving: this light belongs to tile ((k + rotation) mod n^2) of its level, k its index within
+// the level.
 TileMap tileOf(uint index, uint level) {
   uint n = pass.tilesPerAxis;
   uint levelStart = pass.levelOffsets[level / 4u][level % 4u];
-  uint tile = (index + pass.boundLightOffset - levelStart) % (n * n);
+  uint tile = (index + pass.boundLightOffset - levelStart + pass.tileRotation) % (n * n);
   vec2 t = vec2(float(tile % n), float(tile / n));
   vec2 tileSize = vec2(pass.tileWidth, pass.tileHeight), full = vec2(pass.imageWidth, pass.imageHeight);
   // Full-resolution window x maps to tile-local x' = (x - t - 0.5) / n + 0.5, placed at t * tileSize.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "render/gl/debug.h"
@@ -26,6 +28,33 @@ constexpr AovName kAovNames[] = {
 // creases (VPLs and S1 centres a millimetre from the next wall in the Cornell box); 1e-2 removes
 // them and changes Sponza's image imperceptibly (0.4 m there).
 constexpr float kDefaultClampFraction = 1e-2f;
+
+// The settings an accumulated history depends on, as text: all but how the image is shown, the
+// fragment counter, the shadow filter (it runs on the accumulated raw values every frame), the camera
+// (moves are reprojected) and the accumulation's own limits.
+std::string estimateKey(RenderSettings settings) {
+  static const std::set<std::string> independent{"camera",
+                                                 "exposure",
+                                                 "tonemap",
+                                                 "overdraw",
+                                                 "filter-passes",
+                                                 "filter-normal-power",
+                                                 "filter-plane-sigma",
+                                                 "filter-ratio-sigma",
+                                                 "accumulate-max-frames",
+                                                 "accumulate-filter-fade"};
+  std::ostringstream key;
+  key.precision(9);
+  visitSettings(settings, [&](const auto& value, const SettingInfo& info) {
+    if (!independent.count(info.name)) key << info.name << '=' << value << ';';
+  });
+  return key.str();
+}
+
+bool sameView(const CameraView& a, const CameraView& b) {
+  return a.position == b.position && a.worldViewProjection == b.worldViewProjection &&
+         a.cameraRelativeViewProjection == b.cameraRelativeViewProjection;
+}
 
 }  // namespace
 
@@ -81,7 +110,10 @@ void Renderer::setSettings(const RenderSettings& settings) {
                        settings.image.height != settings_.image.height ||
                        settings.lightPass.interleave != settings_.lightPass.interleave;
   settings_ = settings;
-  if (resized) allocateTargets();
+  if (resized) {
+    allocateTargets();
+    restartAccumulation();
+  }
 }
 
 void Renderer::allocateTargets() {
@@ -124,6 +156,9 @@ LightPassOptions Renderer::lightPassOptions() const {
   o.clampDistance = clampDistance();
   o.sceneSize = std::max(scene_.scene().bounds.diagonal(), 1e-6f);
   o.frameSeed = frameIndex_ * 0x9e3779b9u + unsigned(settings_.inputLights.seed);
+  // Accumulating, consecutive frames deal the lights to the n x n tiles shifted by one more, so any n^2
+  // of them give every pixel every light exactly once (without, frame after frame the same dealing).
+  o.tileRotation = accumulating() ? frameIndex_ : 0u;
   return o;
 }
 
@@ -161,6 +196,7 @@ FrameStats Renderer::render(const CameraView& view) {
   if (settings_.indirect) {
     // S0 (VPLs, emitter samples, many point lights) and its hierarchy, when out of date.
     stats.lightsRebuilt = updateLights();
+    stats.accumulatedFrames = updateAccumulation(stats.lightsRebuilt, view);
     const LightPassOptions options = lightPassOptions();
     LightPassTarget target = lightPassTarget();
     LightPassDraws draws;
@@ -188,10 +224,20 @@ FrameStats Renderer::render(const CameraView& view) {
         shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, target.layout, inputLights_.lights, hierarchy_,
                                shadowTargets_, options, rawRatio_);
       });
-    // A-trous filter over the ratio, as a ratio estimator with the unshadowed irradiance.
+    // Temporal accumulation: this frame's raw irradiance and ratio added to the history reprojected from
+    // the last frame; the accumulated estimates replace them for the filter and the composite.
+    if (accumulating())
+      timed(passes::kAccumulation, [&] {
+        accumulationPass_.execute(gbuffer_, view, target.irradiance, target.layout, shadowed(), settings_.accumulation,
+                                  irradiance_, rawRatio_);
+      });
+    // A-trous filter over the ratio, as a ratio estimator with the unshadowed irradiance (less of it
+    // where the ratio holds more frames).
     if (shadowed())
-      timed(passes::kShadowFilter,
-            [&] { shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, visibility_); });
+      timed(passes::kShadowFilter, [&] {
+        shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, visibility_,
+                                  accumulating() ? settings_.accumulation.filterFade : 0.0f);
+      });
     stats.lights = lightStats(draws);
   }
   // Emission + direct + albedo / pi x irradiance x visibility; non-finite pixels written black, counted.
@@ -205,6 +251,28 @@ FrameStats Renderer::render(const CameraView& view) {
   ++frameIndex_;
   gl::checkErrors("frame");
   return stats;
+}
+
+void Renderer::restartAccumulation() {
+  accumulationPass_.restart();
+  accumulatedFrames_ = 0;
+}
+
+int Renderer::updateAccumulation(bool lightsRebuilt, const CameraView& view) {
+  if (!accumulating()) {
+    restartAccumulation();
+    return 0;
+  }
+  std::string key = estimateKey(settings_);
+  // The history's sums belong to the lights and settings they were made with (VPLs are not reprojected).
+  if (lightsRebuilt || key != accumulationKey_) restartAccumulation();
+  accumulationKey_ = std::move(key);
+  // A moved camera keeps the reprojected history where the surfaces match, but this count is of the
+  // still frames only.
+  if (accumulatedFrames_ > 0 && !sameView(view, accumulationView_)) accumulatedFrames_ = 0;
+  accumulationView_ = view;
+  accumulatedFrames_ = std::min(accumulatedFrames_ + 1, settings_.accumulation.maxFrames);
+  return accumulatedFrames_;
 }
 
 bool Renderer::updateLights() {

@@ -11,6 +11,7 @@
 #include "render/gl/profiler.h"
 #include "render/image_io.h"
 #include "render/light_builds.h"
+#include "render/passes/accumulation_pass.h"
 #include "render/passes/composite_pass.h"
 #include "render/passes/direct_light_pass.h"
 #include "render/passes/gbuffer_pass.h"
@@ -34,15 +35,16 @@ inline constexpr const char* kLightPass = "light pass";
 inline constexpr const char* kInterleaveResolve = "interleave resolve";
 inline constexpr const char* kShadowTargets = "shadow targets";
 inline constexpr const char* kShadowRays = "shadow rays";
+inline constexpr const char* kAccumulation = "accumulation";
 inline constexpr const char* kShadowFilter = "shadow filter";
 inline constexpr const char* kComposite = "composite";
 }  // namespace passes
 
 // Images a frame can hand back (AOVs).
 //   indirect    radiance through the LGH, unshadowed (albedo / pi x irradiance)
-//   irradiance  the light pass's irradiance (before albedo)
 //   overdraw    heat map of fragments rasterized per pixel in the light pass (needs settings.overdraw)
-//   ratio       raw visibility ratio of the indirect light (mean of the k shadow rays)
+//   irradiance  the light pass's irradiance (before albedo), accumulated over the frames the history holds
+//   ratio       unfiltered visibility ratio of the indirect light (mean of the k shadow rays, accumulated)
 //   visibility  the filtered ratio that multiplies the indirect light
 enum class Aov { Final, Direct, Indirect, Irradiance, Ratio, Visibility, Overdraw, Emission, Albedo, Normal, Position };
 Aov parseAov(const std::string& name);
@@ -68,6 +70,10 @@ struct FrameStats {
   LightStats lights;
   bool lightsRebuilt = false;    // S0 and the hierarchy were (re)built this frame
   unsigned nonFinitePixels = 0;  // NaN/Inf pixels written black by the composite pass (should be 0)
+  // Frames in the accumulated indirect estimate of the pixels that stayed in view: frames since the
+  // camera, the lights or the estimate's settings last changed, at most accumulation.maxFrames
+  // (pixels that came into view since hold fewer); 0 without accumulation.
+  int accumulatedFrames = 0;
   double totalMs() const;
   double passMs(const std::string& name) const;  // 0 when the pass did not run
 };
@@ -83,6 +89,9 @@ class Renderer {
   void setSettings(const RenderSettings& settings);  // reallocates targets when the size changes
 
   FrameStats render(const CameraView& view);
+  // The next frame starts the accumulated history anew (render() does so itself when the lights or
+  // the settings that the estimate depends on change).
+  void restartAccumulation();
   ImageRGBA readImage(Aov aov) const;
   const GBuffer& gbuffer() const { return gbuffer_; }
   const gl::Texture2D& texture(Aov aov) const;
@@ -104,6 +113,10 @@ class Renderer {
            hierarchy_.gridLightCount > 0;
   }
   bool interleaved() const { return settings_.lightPass.interleave > 1; }
+  bool accumulating() const { return settings_.indirect && settings_.accumulation.enabled; }
+  // Restarts the history when the lights were rebuilt or the estimate's settings changed, and counts
+  // the frames it holds while the camera is still.
+  int updateAccumulation(bool lightsRebuilt, const CameraView& view);
   LightPassOptions lightPassOptions() const;
   LightPassTarget lightPassTarget();
   // The frame's steps that are more than one call: S0 and the hierarchy when they are out of date,
@@ -134,8 +147,14 @@ class Renderer {
   LightVolumePass lightPass_;
   ShadowTargetsPass shadowTargetsPass_;
   ShadowRayPass shadowRayPass_;
+  AccumulationPass accumulationPass_;
   ShadowFilterPass shadowFilterPass_;
   CompositePass compositePass_;
+
+  // What the accumulated history was summed with (settings as text) and where it was seen from.
+  std::string accumulationKey_;
+  CameraView accumulationView_;
+  int accumulatedFrames_ = 0;
 
   // Built when the lights or their settings change, not every frame (LightBuilds decides).
   LightBuilds builds_;
@@ -150,7 +169,7 @@ class Renderer {
   gl::Texture2D fragmentCounts_;  // R32UI, light-pass fragments per pixel (settings.overdraw)
   ShadowSlots shadowSlots_;       // k selected lights per light-pass pixel
   ShadowTargets shadowTargets_;   // input lights drawn per grid light as the rays' targets
-  gl::Texture2D rawRatio_;        // r: visibility ratio from the shadow rays
+  gl::Texture2D rawRatio_;        // r: visibility ratio from the shadow rays (accumulated; a: frames)
   gl::Texture2D visibility_;      // r: filtered ratio
   gl::Texture2D indirect_;        // albedo / pi x irradiance, unshadowed
   gl::Texture2D final_;

@@ -68,6 +68,18 @@ struct ShadowFilterSettings {
   float ratioSigma = 0.25f;  // ratio difference at weight e^-1/2
 };
 
+// Temporal accumulation (AccumulationPass): while the camera is still (or moves a little) and the
+// lights do not change, each frame's raw irradiance and shadow ratio are averaged with the earlier
+// frames' (reprojected through the G-buffer), so the error keeps falling instead of staying at one
+// frame's. With n x n interleaving the light-to-tile dealing rotates every frame so that n^2
+// frames see every light at every pixel. Off by default, so that each render() is one frame as
+// before (pinned frames, benchmarks); the viewer turns it on, and lgh-render with --frames > 1.
+struct AccumulationSettings {
+  bool enabled = false;
+  int maxFrames = 1024;     // history length cap: beyond it the oldest frames fade out (moving average)
+  float filterFade = 0.5f;  // a-trous ratio sigma x N^-filterFade for N accumulated frames (0: no fade)
+};
+
 struct RenderSettings {
   ImageSettings image;
   bool directShadows = true;   // DirectLightPass: one shadow ray per punctual light
@@ -78,6 +90,7 @@ struct RenderSettings {
   LightPassSettings lightPass;
   ShadowSettings shadows;
   ShadowFilterSettings filter;
+  AccumulationSettings accumulation;
 };
 
 struct SettingInfo {
@@ -159,6 +172,18 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(filter.planeSigma,
         SettingInfo{"filter-plane-sigma", "a-trous tangent-plane distance weight, in pixel footprints", 0.01, 1000});
   visit(filter.ratioSigma, SettingInfo{"filter-ratio-sigma", "a-trous shadow-ratio difference weight", 0.001, 100});
+  auto& accumulation = s.accumulation;
+  visit(accumulation.enabled,
+        SettingInfo{"accumulate",
+                    "average the indirect light's raw estimates over frames while the camera and lights are still "
+                    "(history reprojected through the G-buffer; interleaving rotated per frame; default on in the "
+                    "viewer and in lgh-render with --frames > 1)"});
+  visit(accumulation.maxFrames,
+        SettingInfo{"accumulate-max-frames", "frames the history holds at most; older ones fade out", 1, 1 << 20});
+  visit(accumulation.filterFade,
+        SettingInfo{"accumulate-filter-fade",
+                    "the a-trous ratio sigma shrinks as N^-fade with N accumulated frames (0: filter as for one frame)",
+                    0, 4});
 }
 
 // Sets the setting called `name` from text, checking its type and range (the viewer's `set`, the

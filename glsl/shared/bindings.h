@@ -44,6 +44,11 @@
 #define LGH_TEXTURE_COMPOSITE_INDIRECT 5
 #define LGH_TEXTURE_COMPOSITE_VISIBILITY 6
 #define LGH_TEXTURE_DISPLAY_IMAGE 0
+#define LGH_TEXTURE_ACCUM_RAW_IRRADIANCE 4     // accumulation: this frame's unresolved irradiance
+#define LGH_TEXTURE_ACCUM_IRRADIANCE_SUM 5     // accumulation history: sum of raw irradiance, a: frames
+#define LGH_TEXTURE_ACCUM_RATIO_SUM 6          // accumulation history: shadowed and unshadowed luminance sums
+#define LGH_TEXTURE_ACCUM_PREVIOUS_POSITION 7  // accumulation history: the surfaces it belongs to
+#define LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL 8
 
 // Image units, per pass.
 #define LGH_IMAGE_TILED_POSITION 0            // interleave split
@@ -59,6 +64,12 @@
 #define LGH_IMAGE_FILTER_OUT 0                // a-trous
 #define LGH_IMAGE_COMPOSITE_FINAL 0
 #define LGH_IMAGE_COMPOSITE_INDIRECT 1
+#define LGH_IMAGE_ACCUM_IRRADIANCE 0      // accumulation: in this frame's irradiance, out the accumulated
+#define LGH_IMAGE_ACCUM_RATIO 1           // accumulation: in the raw ratio, out the accumulated one
+#define LGH_IMAGE_ACCUM_IRRADIANCE_SUM 2  // accumulation: the new history
+#define LGH_IMAGE_ACCUM_RATIO_SUM 3
+#define LGH_IMAGE_ACCUM_POSITION 4
+#define LGH_IMAGE_ACCUM_NORMAL 5
 
 // Uniform blocks.
 #define LGH_UBO_FRAME 0

@@ -50,7 +50,8 @@ GPU_STRUCT(LightPassUniforms) {
   uint shadowSamples;  // k slots per pixel (0 = off)
   uint selectFlags;    // kSelect*
   uint frameSeed;
-  uint pad0;
+  uint tileRotation;  // added to a light's index before dealing it to a tile: rotated per frame
+                      // while accumulating, so n^2 frames give every pixel every light once
 
   // levelOffsets[l / 4][l % 4]: index of level l's first light in the merged grid-light buffer
   // (S0: 0), for dealing each level's lights evenly to the tiles

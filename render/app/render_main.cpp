@@ -29,6 +29,7 @@ struct Command {
   std::string backend = "auto";
   std::vector<std::string> aovOutputs;
   bool quiet = false, debugGL = false;
+  int frames = 1;  // frames rendered from the same camera (same VPLs); the last one is written
   lgh::RenderSettings settings;
   lgh::AddedLightOptions addedLights;
 };
@@ -45,6 +46,11 @@ void addOptions(CLI::App& app, Command& c) {
       ->capture_default_str();
   app.add_option("--backend", c.backend, "OpenGL context: " + joined(lgh::gl::backendNames()))->capture_default_str();
   app.add_option("--aov", c.aovOutputs, "also write an AOV: NAME=FILE, NAME one of " + joined(lgh::aovNames()));
+  app.add_option("--frames", c.frames,
+                 "render this many frames from the still camera (same VPLs, new shadow samples and interleaving "
+                 "rotation each) and write the last: their accumulated estimate (unless --accumulate=false)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 1 << 20));
   app.add_flag("-q,--quiet", c.quiet, "print nothing but errors");
   app.add_flag("--debug-gl", c.debugGL, "KHR_debug context: GL errors abort the render with the driver's message");
   lgh::addSettingsOptions(app, c.settings);
@@ -99,6 +105,9 @@ void printSummary(const Command& c, const lgh::gl::Context& context, const lgh::
               size_t(std::count_if(scene.materials.begin(), scene.materials.end(),
                                    [](const lgh::Material& m) { return m.isEmissive(); })));
   if (c.settings.indirect) printLightPassSummary(c.settings, stats.lights);
+  if (c.settings.indirect && c.settings.accumulation.enabled)
+    std::printf("accumulate %d frames in the history (at most %d)\n", stats.accumulatedFrames,
+                c.settings.accumulation.maxFrames);
   std::printf("load       %.1f ms, GPU setup %.1f ms\n", loadMs, setupMs);
   std::printf("passes     (wall ms, glFinish-bracketed)\n");
   for (const auto& p : stats.passes) std::printf("  %-18s %9.2f\n", p.name.c_str(), p.wallMs);
@@ -110,6 +119,8 @@ int run(int argc, char** argv) {
   Command c;
   addOptions(app, c);
   CLI11_PARSE(app, argc, argv);
+  // More than one frame is asked for to accumulate them, unless --accumulate says otherwise.
+  if (c.frames > 1 && app.count("--accumulate") == 0) c.settings.accumulation.enabled = true;
   const lgh::RenderSettings& settings = c.settings;
   // Everything cheap is validated before any work: a bad AOV name or extension fails in milliseconds.
   const std::map<lgh::Aov, std::filesystem::path> aovs = checkedAovs(c);
@@ -132,8 +143,9 @@ int run(int argc, char** argv) {
   const lgh::SceneGpu sceneGpu(scene);
   lgh::Renderer renderer(sceneGpu, settings);
   const double setupMs = msSince(t1);
-  const lgh::FrameStats stats =
-      renderer.render(lgh::makeCameraView(camera, settings.image.width, settings.image.height));
+  const lgh::CameraView view = lgh::makeCameraView(camera, settings.image.width, settings.image.height);
+  lgh::FrameStats stats;
+  for (int f = 0; f < c.frames; ++f) stats = renderer.render(view);
 
   lgh::writeImage(c.output, renderer.readImage(lgh::Aov::Final), settings.image.exposure, toneMap);
   for (const auto& [aov, path] : aovs) {

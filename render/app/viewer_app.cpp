@@ -184,7 +184,13 @@ bool Viewer::minimized() const {
 }
 
 // renderedKey_ is also set by a failed attempt, so a frame that fails is not retried until something changes.
-bool Viewer::needsRender() const { return state_.continuous || frameKey() != renderedKey_; }
+bool Viewer::needsRender() const {
+  // A still view keeps rendering while the accumulated history is not full: each frame lowers its error.
+  const RenderSettings& s = renderer_.settings();
+  const bool accumulating =
+      rendered_ && s.indirect && s.accumulation.enabled && lastFrame_.accumulatedFrames < s.accumulation.maxFrames;
+  return state_.continuous || accumulating || frameKey() != renderedKey_;
+}
 
 void Viewer::step(bool forceRender) {
   // Idle (nothing to render, or minimized): wait for input rather than spin; ImGui still gets a

@@ -55,6 +55,8 @@ int run(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("-q,--quiet", options.quiet, "print nothing but errors");
   app.add_flag("--debug-gl", debugGL, "KHR_debug context: GL errors abort with the driver's message");
+  // The viewer accumulates while the view is still (--accumulate=false: every frame on its own).
+  state.settings.accumulation.enabled = true;
   lgh::addSettingsOptions(app, state.settings);
   lgh::addLightOptions(app, addedLights);
   CLI11_PARSE(app, argc, argv);

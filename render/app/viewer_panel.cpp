@@ -183,6 +183,8 @@ void drawStatus(const ViewerState& state, const PanelInfo& info) {
   if (const FrameStats* f = info.lastFrame) {
     const LightStats& l = f->lights;
     ImGui::Text("frame %.0f ms%s", f->totalMs(), f->lightsRebuilt ? ", lights rebuilt" : "");
+    if (state.settings.indirect && state.settings.accumulation.enabled)
+      ImGui::Text("accumulated %d frames (at most %d)", f->accumulatedFrames, state.settings.accumulation.maxFrames);
     if (state.settings.indirect) {
       ImGui::TextWrapped("S0 %zu lights: %zu VPLs, %zu emitter samples, %zu point lights", l.inputLights, l.vpls,
                          l.emitterSamples, l.pointLights);

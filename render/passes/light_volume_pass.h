@@ -38,6 +38,7 @@ struct LightPassOptions {
   float clampDistance = 0.0f;  // d_c, resolved
   float sceneSize = 1.0f;      // spreads the culling depth over [0, 1) (shared/light_levels.h)
   unsigned frameSeed = 0;
+  unsigned tileRotation = 0;  // n x n interleaving: lights are dealt to tile (index + rotation) mod n^2
 };
 
 // Per pixel of the light pass's target: the running importance total and k selected lights.

@@ -3,7 +3,8 @@
 //   ShadowRayPass:    GBuffer, ShadowSlots, lights, ShadowTargets -> raw visibility ratio (RGBA32F: r ratio,
 //                     g rays)
 //   ShadowFilterPass: raw ratio, unshadowed irradiance, GBuffer -> filtered ratio (RGBA32F: r), by
-//                     an a-trous filter applied as a ratio estimator
+//                     an a-trous filter applied as a ratio estimator; a ratio accumulated over N frames
+//                     (N in the raw ratio's alpha) is filtered with its ratio sigma x N^-sigmaFade
 
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
@@ -33,7 +34,7 @@ class ShadowFilterPass {
  public:
   ShadowFilterPass();
   void execute(const GBuffer& gbuffer, const gl::Texture2D& rawRatio, const gl::Texture2D& irradiance,
-               const ShadowFilterSettings& options, gl::Texture2D& filteredRatio);
+               const ShadowFilterSettings& options, gl::Texture2D& filteredRatio, float sigmaFade = 0.0f);
 
  private:
   gl::Program program_;

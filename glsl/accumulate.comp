@@ -1,0 +1,152 @@
+#version 450 core
+// Temporal accumulation of the indirect light's raw estimates (docs/design.md §6, "accumulation"):
+// each pixel finds its surface in the previous frame (reprojected through the previous camera) and,
+// when the surface there is the same (tangent-plane distance and normal), adds this frame's raw
+// values to the history's sums:
+//   irradiance sum  rgb: sum of E_f (unresolved: with n x n interleaving the tile's n^2-scaled value)
+//                   a:   N, frames in the history
+//   ratio sum       r: sum of lum(E_f) r_f, g: sum of lum(E_f), b: sum of r_f
+// Raw, not filtered, values are summed so that the sums converge to the exact estimate instead of to
+// a filtered one. Outputs, in place: the accumulated irradiance sum / N (with interleaving only once
+// N >= n^2, when the rotated dealing has given the pixel every light; before that the resolved
+// irradiance of this frame stays), and the accumulated ratio sum(lum E r) / sum(lum E) (a ratio
+// estimator, weighted as the a-trous filter weighs its taps) with N in alpha for the filter.
+// With N = 1 the outputs are this frame's values bit for bit.
+// Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
+// irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, but
+// over a window that shrinks with N. The dealing rotates by one tile per frame, so N consecutive
+// frames give a pixel N consecutive tile classes, and the neighbour dy rows away sees them shifted by
+// n dy: for N < n the n x n window counts every class N times; from N >= n on a vertical window of n
+// rows covers every class (exactly floor(N / n) or one more times), with n times less blur.
+#include "shared/bindings.h"
+#include "shared/color.glsl"
+layout(local_size_x = 8, local_size_y = 8) in;
+#include "shared/frame.glsl"
+#include "shared/gbuffer.glsl"
+
+layout(binding = LGH_TEXTURE_ACCUM_RAW_IRRADIANCE) uniform sampler2D rawIrradiance;  // tiled layout when n > 1
+layout(binding = LGH_TEXTURE_ACCUM_IRRADIANCE_SUM) uniform sampler2D historyIrradiance;
+layout(binding = LGH_TEXTURE_ACCUM_RATIO_SUM) uniform sampler2D historyRatio;
+layout(binding = LGH_TEXTURE_ACCUM_PREVIOUS_POSITION) uniform sampler2D previousPosition;  // w = 0: no surface
+layout(binding = LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL) uniform sampler2D previousNormal;
+layout(rgba32f, binding = LGH_IMAGE_ACCUM_IRRADIANCE) uniform image2D irradiance;  // resolved in, accumulated out
+layout(rgba32f, binding = LGH_IMAGE_ACCUM_RATIO) uniform image2D ratio;            // raw in, accumulated out (a: N)
+layout(rgba32f, binding = LGH_IMAGE_ACCUM_IRRADIANCE_SUM) uniform writeonly image2D irradianceSumOut;
+layout(rgba32f, binding = LGH_IMAGE_ACCUM_RATIO_SUM) uniform writeonly image2D ratioSumOut;
+layout(rgba32f, binding = LGH_IMAGE_ACCUM_POSITION) uniform writeonly image2D positionOut;
+layout(rgba16f, binding = LGH_IMAGE_ACCUM_NORMAL) uniform writeonly image2D normalOut;
+
+uniform int stage;                          // 0: sums and outputs; 1: resolve of incomplete interleaved sums
+uniform float normalPower;                  // stage 1: neighbour weight max(0, n.n')^normalPower
+uniform float planeSigma;                   // stage 1: tangent-plane distance in pixel footprints at weight e^-1/2
+uniform int hasHistory;                     // 0: restart (every pixel's history is empty)
+uniform int shadowed;                       // the ratio image holds this frame's raw ratio
+uniform mat4 previousViewProjection;        // camera-relative: clip = M (p - previousCameraPosition)
+uniform vec3 previousCameraPosition;
+uniform uint tilesPerAxis;                  // n
+uniform uvec2 tileSize;
+uniform float maxFrames;                    // history length cap
+uniform float planeTolerance;               // tangent-plane distance, in pixel footprints, still the same surface
+uniform float normalTolerance;              // smallest n . n' still the same surface
+
+ivec2 tiledCoord(ivec2 pixel) {
+  uvec2 p = uvec2(pixel);
+  return ivec2((p % tilesPerAxis) * tileSize + p / tilesPerAxis);
+}
+
+// The history pixel holding this surface, or (-1, -1) when the previous frame did not see it.
+ivec2 historyPixel(Surface s, ivec2 size) {
+  vec4 clip = previousViewProjection * vec4(s.position - previousCameraPosition, 1.0);
+  if (clip.w <= 0.0) return ivec2(-1);
+  // Nearest texel: a still camera maps every pixel centre onto itself, so the history is not blurred.
+  ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(size)));
+  if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) return ivec2(-1);
+  vec4 p = texelFetch(previousPosition, q, 0);
+  if (p.w == 0.0) return ivec2(-1);
+  float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30);
+  if (abs(dot(s.normal, p.xyz - s.position)) > planeTolerance * footprint) return ivec2(-1);  // disoccluded
+  if (dot(s.normal, texelFetch(previousNormal, q, 0).xyz) < normalTolerance) return ivec2(-1);
+  return q;
+}
+
+// Stage 1: the irradiance of a pixel whose sum lacks some tiles, from the window's new sums (bound as
+// historyIrradiance).
+void resolveIncomplete(ivec2 pixel, ivec2 size) {
+  Surface s = loadSurface(pixel);
+  float frames = texelFetch(historyIrradiance, pixel, 0).a;
+  uint n = tilesPerAxis;
+  if (!s.valid || frames < 1.5 || frames >= float(n * n)) return;
+  float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30);
+  int half_ = int(n / 2u);
+  bool even = (n & 1u) == 0u;
+  int halfX = frames >= float(n) ? 0 : half_;  // from n frames on: one column of n rows
+  vec3 sum = vec3(0.0);
+  float weightSum = 0.0;
+  for (int dy = -half_; dy <= half_; ++dy) {
+    for (int dx = -halfX; dx <= halfX; ++dx) {
+      ivec2 q = pixel + ivec2(dx, dy);
+      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+      vec4 qSum = texelFetch(historyIrradiance, q, 0);
+      vec4 qPosition = texelFetch(gPosition, q, 0);
+      if (qPosition.w == 0.0 || qSum.a == 0.0) continue;
+      float window = (even && halfX > 0 && abs(dx) == half_ ? 0.5 : 1.0) * (even && abs(dy) == half_ ? 0.5 : 1.0);
+      float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
+      float w = window * pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) *
+                exp(-0.5 * plane * plane);
+      sum += w * qSum.rgb / qSum.a;
+      weightSum += w;
+    }
+  }
+  // The pixel's own tap has weight 1.
+  imageStore(irradiance, pixel, vec4(sum / weightSum, imageLoad(irradiance, pixel).a));
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 size = ivec2(frame.resolution.xy);
+  if (any(greaterThanEqual(pixel, size))) return;
+  if (stage == 1) {
+    resolveIncomplete(pixel, size);
+    return;
+  }
+  Surface s = loadSurface(pixel);
+  imageStore(positionOut, pixel, vec4(s.position, s.valid ? 1.0 : 0.0));
+  imageStore(normalOut, pixel, vec4(s.normal, 0.0));
+  if (!s.valid) {
+    imageStore(irradianceSumOut, pixel, vec4(0.0));
+    imageStore(ratioSumOut, pixel, vec4(0.0));
+    return;
+  }
+  vec4 irradianceSum = vec4(0.0), ratioSum = vec4(0.0);
+  if (hasHistory != 0) {
+    ivec2 q = historyPixel(s, size);
+    if (q.x >= 0) {
+      irradianceSum = texelFetch(historyIrradiance, q, 0);
+      ratioSum = texelFetch(historyRatio, q, 0);
+    }
+  }
+  // At the cap the sums are scaled to maxFrames - 1 frames first: a moving average of the last frames.
+  float n = irradianceSum.a;
+  if (n > maxFrames - 1.0) {
+    float keep = (maxFrames - 1.0) / n;
+    irradianceSum *= keep;
+    ratioSum *= keep;
+  }
+  vec3 e = tilesPerAxis > 1u ? texelFetch(rawIrradiance, tiledCoord(pixel), 0).rgb : texelFetch(rawIrradiance, pixel, 0).rgb;
+  vec4 rawRatio = imageLoad(ratio, pixel);
+  float r = shadowed != 0 ? rawRatio.r : 1.0;
+  float l = max(luminance(e), 0.0);
+  irradianceSum += vec4(e, 1.0);
+  ratioSum += vec4(l * r, l, r, 0.0);
+  imageStore(irradianceSumOut, pixel, irradianceSum);
+  imageStore(ratioSumOut, pixel, ratioSum);
+  float frames = irradianceSum.a;
+  if (frames < 1.5) return;  // this frame only: its values stay as they are
+  // Before n^2 frames the sum lacks some of the lights' tiles: stage 1 resolves it.
+  if (frames >= float(tilesPerAxis * tilesPerAxis))
+    imageStore(irradiance, pixel, vec4(irradianceSum.rgb / frames, imageLoad(irradiance, pixel).a));
+  if (shadowed != 0) {
+    float accumulated = ratioSum.g > 0.0 ? ratioSum.r / ratioSum.g : ratioSum.b / frames;
+    imageStore(ratio, pixel, vec4(clamp(accumulated, 0.0, 1.0), rawRatio.g, 0.0, frames));
+  }
+}

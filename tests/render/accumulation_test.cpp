@@ -1,0 +1,177 @@
+// Temporal accumulation (AccumulationPass): still frames lower the shadowed error; n x n interleaving
+// with the per-frame rotation gives the 1 x 1 irradiance after n^2 frames; a moved camera keeps the
+// history of surfaces still in view and restarts the disoccluded ones; changed lights or settings
+// restart it.
+#include <cstdio>
+
+#include "gl_test_env.h"
+#include "render/image_compare.h"
+#include "render/passes/brute_force_pass.h"
+#include "render/renderer.h"
+#include "render/scene/scene_gpu.h"
+
+namespace lgh::test {
+namespace {
+
+class AccumulationTest : public GLTest {
+ protected:
+  AccumulationTest() : scene(loadScene(sourceDir() / "data" / "cornell_box.gltf")) {
+    settings.image.width = 96;
+    settings.image.height = 54;
+    settings.inputLights.vpls = 3000;
+    settings.inputLights.bounces = 1;
+    settings.accumulation.enabled = true;
+  }
+  CameraView view(const Camera& camera) const {
+    return makeCameraView(camera, settings.image.width, settings.image.height);
+  }
+  CameraView view() const { return view(resolveCamera(scene, settings)); }
+  // Frames held per pixel (alpha of the accumulated ratio; 1 where a pixel's history just started,
+  // 0 on the background).
+  static std::vector<float> historyLengths(const Renderer& renderer) {
+    std::vector<float> n;
+    const std::vector<glm::vec4> ratio = renderer.texture(Aov::Ratio).readRGBA();
+    const std::vector<glm::vec4> position = renderer.gbuffer().position.readRGBA();
+    for (size_t i = 0; i < ratio.size(); ++i) n.push_back(position[i].w > 0 ? ratio[i].a : 0.0f);
+    return n;
+  }
+
+  Scene scene;
+  RenderSettings settings;
+};
+
+// The shadow estimate (brute-force light pass, so that only shadows differ from the exact image)
+// against one shadow ray per light and pixel: the error falls with the frames, filtered or not.
+TEST_F(AccumulationTest, StillFramesLowerTheShadowedError) {
+  const SceneGpu gpu(scene);
+  settings.image.width = 64;  // brute force: kept small
+  settings.image.height = 36;
+  settings.inputLights.vpls = 1000;
+  settings.lightPass.bruteForce = true;
+  settings.shadows.samples = 1;
+  Renderer renderer(gpu, settings);
+  renderer.render(view());
+  BruteForcePass bruteForce;
+  gl::Texture2D exactTexture(settings.image.width, settings.image.height, GL_RGBA32F);
+  bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
+                     renderer.clampDistance(), exactTexture, &gpu);
+  const ImageRGBA exact = fromGLRows(settings.image.width, settings.image.height, exactTexture.readRGBA());
+
+  auto shadowedError = [&](int filterPasses, int frames) {
+    settings.filter.passes = filterPasses;
+    renderer.setSettings(settings);
+    renderer.restartAccumulation();
+    FrameStats stats;
+    for (int f = 0; f < frames; ++f) stats = renderer.render(view());
+    EXPECT_EQ(stats.accumulatedFrames, frames);
+    ImageRGBA shadowed = renderer.readImage(Aov::Irradiance);
+    const ImageRGBA ratio = renderer.readImage(Aov::Visibility);
+    for (size_t i = 0; i < shadowed.pixels.size(); ++i) shadowed.pixels[i] *= ratio.pixels[i].r;
+    return relativeRmse(shadowed, exact);
+  };
+  for (int passes : {0, 5}) {
+    const double one = shadowedError(passes, 1), four = shadowedError(passes, 4), sixteen = shadowedError(passes, 16);
+    std::printf("  %s: relative RMSE 1 frame %.4f, 4 frames %.4f, 16 frames %.4f\n", passes ? "filtered" : "raw", one,
+                four, sixteen);
+    EXPECT_LT(four, one);
+    EXPECT_LT(sixteen, four);
+    // Independent frames: the raw error falls as 1/sqrt(N) (0.25 at 16); the filtered one less.
+    EXPECT_LT(sixteen, (passes ? 0.8 : 0.6) * one);
+  }
+}
+
+// 4 x 4 interleaving, the dealing rotated every frame: after 16 frames every pixel has summed every
+// light once, n^2-scaled, so the accumulated irradiance is the 1 x 1 irradiance.
+TEST_F(AccumulationTest, InterleavedFramesSumToTheFullIrradiance) {
+  const SceneGpu gpu(scene);
+  settings.shadows.samples = 0;
+  Renderer renderer(gpu, settings);
+  renderer.render(view());
+  const ImageRGBA full = renderer.readImage(Aov::Irradiance);
+  settings.lightPass.interleave = 4;
+  renderer.setSettings(settings);
+  FrameStats stats;
+  std::vector<double> error;  // against 1 x 1 after 1..16 frames
+  for (int f = 0; f < 16; ++f) {
+    stats = renderer.render(view());
+    error.push_back(relativeRmse(renderer.readImage(Aov::Irradiance), full));
+  }
+  EXPECT_EQ(stats.accumulatedFrames, 16);
+  std::printf("  4x4 against 1x1 after 1, 2, 4, 8, 15, 16 frames: %.4f %.4f %.4f %.4f %.4f %.2e\n", error[0], error[1],
+              error[3], error[7], error[14], error[15]);
+  EXPECT_GT(error[0], 1e-3) << "one interleaved frame is not the full irradiance";
+  // Incomplete sums are resolved over a window that shrinks with the frames (n x n, then n x 1).
+  EXPECT_LT(error[1], error[0]);
+  EXPECT_LT(error[3], error[1]);
+  EXPECT_LT(error[14], error[3]);
+  EXPECT_LT(error[15], 1e-5);
+}
+
+// A small sideways step: surfaces still in view keep their history (reprojected); the ones the step
+// uncovered start one. A jump to the other side of the room keeps (almost) none.
+TEST_F(AccumulationTest, MovedCameraKeepsTheHistoryOfSurfacesStillInView) {
+  const SceneGpu gpu(scene);
+  settings.shadows.samples = 1;
+  Renderer renderer(gpu, settings);
+  const Camera camera = resolveCamera(scene, settings);
+  for (int f = 0; f < 4; ++f) renderer.render(view(camera));
+  Camera stepped = camera;
+  stepped.position += 0.02f * scene.bounds.diagonal() * camera.orientation[0];
+  EXPECT_EQ(renderer.render(view(stepped)).accumulatedFrames, 1) << "the still-frame count restarts on a move";
+  const std::vector<float> n = historyLengths(renderer);
+  size_t valid = 0, kept = 0, restarted = 0, other = 0;
+  for (float v : n) {
+    if (v == 0.0f) continue;
+    ++valid;
+    if (v == 5.0f)
+      ++kept;
+    else if (v == 1.0f)
+      ++restarted;
+    else
+      ++other;
+  }
+  std::printf("  step: %zu pixels, %zu kept 5 frames, %zu restarted\n", valid, kept, restarted);
+  EXPECT_EQ(other, 0u);
+  EXPECT_GT(double(kept), 0.8 * double(valid));
+  EXPECT_GT(restarted, 0u) << "the step uncovers surfaces behind the boxes and at the image's edge";
+
+  Camera turned = stepped;
+  turned.orientation[0] = -turned.orientation[0];
+  turned.orientation[2] = -turned.orientation[2];
+  renderer.render(view(turned));
+  size_t keptAfterTurn = 0;
+  for (float v : historyLengths(renderer)) keptAfterTurn += v > 1.0f;
+  EXPECT_LT(double(keptAfterTurn), 0.05 * double(valid)) << "facing the other way, the surfaces are others";
+}
+
+// Changed lights (new VPLs) and changed settings of the estimate restart the history; the shadow
+// filter's settings do not (it runs on the accumulated raw values).
+TEST_F(AccumulationTest, ChangedLightsOrSettingsRestart) {
+  SceneGpu gpu(scene);
+  settings.shadows.samples = 0;  // the unshadowed irradiance is the same every frame: mixes show
+  Renderer renderer(gpu, settings);
+  for (int f = 0; f < 4; ++f) EXPECT_EQ(renderer.render(view()).accumulatedFrames, f + 1);
+  const ImageRGBA before = renderer.readImage(Aov::Irradiance);
+
+  PunctualLight brighter = gpu.lights()[0];
+  brighter.intensity *= 2.0f;
+  gpu.setPunctualLight(0, brighter);
+  const FrameStats stats = renderer.render(view());
+  EXPECT_TRUE(stats.lightsRebuilt);
+  EXPECT_EQ(stats.accumulatedFrames, 1);
+  // Twice the light: twice the irradiance (a kept history would give (4 + 2) / 5 = 1.2 times).
+  EXPECT_NEAR(meanLuminance(renderer.readImage(Aov::Irradiance)) / meanLuminance(before), 2.0, 1e-3);
+
+  settings.filter.ratioSigma *= 2.0f;
+  renderer.setSettings(settings);
+  EXPECT_EQ(renderer.render(view()).accumulatedFrames, 2) << "the filter runs on the history: no restart";
+  settings.lightPass.alpha *= 2.0f;
+  renderer.setSettings(settings);
+  EXPECT_EQ(renderer.render(view()).accumulatedFrames, 1) << "another estimate: restart";
+  settings.accumulation.enabled = false;
+  renderer.setSettings(settings);
+  EXPECT_EQ(renderer.render(view()).accumulatedFrames, 0);
+}
+
+}  // namespace
+}  // namespace lgh::test
