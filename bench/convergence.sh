@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Error of the shadowed indirect light against k (1, 4, 16; one frame, filtered and raw) and against
-# accumulated still frames (1, 4, 16, 64 at k = 4), for both shadow-ray target modes (input lights drawn
+# accumulated still frames (1, 4, 16, 64 at k = 4, filtered), for both shadow-ray target modes (input lights drawn
 # by share and resampled: the default; the paper's jittered cluster centres with S1 not selected), on
 # sponza_sun@atrium and cornell_emissive at 10K and 100K VPLs, 320x180, alpha 2, S1; plus the
 # unshadowed error of 4x4 interleaving accumulated over 16 frames against 1x1. Writes the sweeps under
@@ -27,7 +27,7 @@ for scene in "sponza_sun/sponza_sun.gltf@atrium" "cornell_emissive/cornell_emiss
       "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" ${modes[$mode]} \
         --interleave 1 --shadow-samples 1,4,16 --filter on,off --frames 1 --out "$dir/k"
       "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" ${modes[$mode]} \
-        --interleave 1 --shadow-samples 4 --filter on,off --frames 4,16,64 --out "$dir/frames"
+        --interleave 1 --shadow-samples 4 --filter on --frames 4,16,64 --out "$dir/frames"
     done
     "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" \
       --interleave 1,4 --shadow-samples 0 --frames 1,16 --out "$out/${name}_${vpls}_interleave"

@@ -18,24 +18,26 @@ def main(out):
     print("Relative RMSE of the shadowed indirect light (irradiance x visibility) against the Embree reference;")
     print("320x180, alpha 2, S1, 1x1. `lights`: rays to input lights drawn by share and resampled (default);")
     print("`paper`: jittered cluster centres, S1 not selected. Unshadowed LGH error in brackets.\n")
-    header = "| scene, VPLs | targets | k=1 | k=4 | k=16 | k=4 raw | k=16 raw | 16/4 raw | 4 frames | 16 frames | 64 frames | 64 frames raw | 64 frames / unshadowed |"
+    header = "| scene, VPLs | targets | k=1 | k=4 | k=16 | k=4 raw | k=16 raw | 16/4 raw | 4 frames | 16 frames | 64 frames | 64 frames / unshadowed |"
     print(header)
     print("|" + "---|" * (header.count("|") - 1))
     for case in cases:
         scene, vpls = case.rsplit("_", 1)
         for mode in ("lights", "paper"):
             d = os.path.join(out, f"{case}_{mode}")
-            if not os.path.isdir(d):
+            if not os.path.exists(f"{d}/k/sweep.csv"):
                 continue
             ks = {(r["shadow_samples"], r["filter"]): float(r["rmse_shadowed"]) for r in rows(f"{d}/k/sweep.csv")}
-            fs = {(r["frames"], r["filter"]): float(r["rmse_shadowed"]) for r in rows(f"{d}/frames/sweep.csv")}
+            fs = {}
+            if os.path.exists(f"{d}/frames/sweep.csv"):
+                fs = {(r["frames"], r["filter"]): float(r["rmse_shadowed"]) for r in rows(f"{d}/frames/sweep.csv")}
             unshadowed = float(rows(f"{d}/k/sweep.csv")[0]["rmse_unshadowed"])
-            cell = lambda v: f"{v:.3f}"
+            cell = lambda v: f"{v:.3f}" if v is not None else "not run"
             print(f"| {scene}, {int(vpls) // 1000}K ({unshadowed:.3f}) | {mode} | "
                   + " | ".join(cell(ks[(k, "on")]) for k in ("1", "4", "16")) + " | "
                   + f"{cell(ks[('4', 'off')])} | {cell(ks[('16', 'off')])} | {ks[('16', 'off')] / ks[('4', 'off')]:.2f}x | "
-                  + " | ".join(cell(fs[(f, "on")]) for f in ("4", "16", "64")) + " | "
-                  + f"{cell(fs[('64', 'off')])} | {fs[('64', 'on')] / unshadowed:.2f}x |")
+                  + " | ".join(cell(fs.get((f, "on"))) for f in ("4", "16", "64")) + " | "
+                  + (f"{fs[('64', 'on')] / unshadowed:.2f}x" if ("64", "on") in fs else "not run") + " |")
     print("\nUnshadowed error of n x n interleaving, one frame and 16 accumulated still frames (light-to-tile")
     print("assignment rotated every frame):\n")
     print("| scene, VPLs | 1x1, 1 frame | 4x4, 1 frame | 4x4, 16 frames | 4x4 16 frames / 1x1 |")

@@ -136,7 +136,8 @@ std::vector<std::string> csvCells(const Case& c, const Measurement& m) {
         num(m.buildMs),
         num(m.passMedian(passes::kLightPass)),
         interleaved ? num(m.passMedian(passes::kInterleaveSplit) + m.passMedian(passes::kInterleaveResolve)) : "",
-        num(m.passMedian(passes::kShadowTargets) + m.passMedian(passes::kShadowRays)),
+        num((m.passMs.count(passes::kShadowTargets) ? m.passMedian(passes::kShadowTargets) : 0.0) +
+            m.passMedian(passes::kShadowRays)),
         num(m.passMedian(passes::kShadowFilter)),
         num(median(m.frameMs)),
         std::string(m.extrapolated ? "1" : "0"),
