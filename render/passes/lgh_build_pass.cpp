@@ -16,7 +16,6 @@ namespace lgh {
 namespace {
 
 constexpr unsigned kLocalSize = 256;
-constexpr size_t kLightChunkGranularity = 1024;  // chunk offsets stay multiples of 32 KiB (any SSBO alignment)
 constexpr double kFixedPointHeadroom = 4611686018427387904.0;  // 2^62: sums stay below 2^63
 
 size_t nextPowerOfTwo(size_t v) {
@@ -64,15 +63,20 @@ LghBuildPass::LghBuildPass(bool floatAtomicsAvailable)
 
 template <typename Fn>
 void LghBuildPass::forEachLightChunk(const gl::Buffer& lights, size_t lightCount, Fn&& fn) {
-  const size_t blockLights = maxBlockBytes_ / sizeof(gpu::GpuLight);
-  size_t chunk = maxLightsPerDispatch_ ? std::min(maxLightsPerDispatch_, blockLights) : blockLights;
-  chunk = std::max(kLightChunkGranularity, chunk / kLightChunkGranularity * kLightChunkGranularity);
+  const size_t chunk = lightChunkSize(maxBlockBytes_, maxLightsPerDispatch_);
   for (size_t first = 0; first < lightCount; first += chunk) {
     const size_t count = std::min(chunk, lightCount - first);
     lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight),
                      count * sizeof(gpu::GpuLight));
     fn(first, count);
   }
+}
+
+size_t lightChunkSize(size_t maxBlockBytes, size_t requested) {
+  constexpr size_t kGranularity = 1024;
+  const size_t blockLights = maxBlockBytes / sizeof(gpu::GpuLight);
+  const size_t chunk = requested ? std::min(requested, blockLights) : blockLights;
+  return std::max(kGranularity, chunk / kGranularity * kGranularity);
 }
 
 gpu::LghGridParams gridParamsFor(const GridGeometry& grid, int level, size_t tableCapacity) {

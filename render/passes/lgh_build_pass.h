@@ -62,6 +62,11 @@ struct GpuHierarchy {
   std::vector<gpu::GpuGridLight> downloadLevel(int level) const;
 };
 
+// Input lights per dispatch when S0 is bound in chunks of at most one storage block (and at most
+// `requested` lights, 0: no limit): a multiple of 1024 lights, so every chunk's byte offset is a
+// multiple of 32 KiB, which satisfies any SSBO offset alignment.
+size_t lightChunkSize(size_t maxBlockBytes, size_t requested = 0);
+
 // The build kernels' grid uniforms for `level` (and any pass that locates cells the same way).
 gpu::LghGridParams gridParamsFor(const GridGeometry& grid, int level, size_t tableCapacity);
 

@@ -9,7 +9,6 @@
 namespace lgh {
 namespace {
 constexpr unsigned kLocalSize = 256;
-constexpr size_t kLightChunkGranularity = 1024;  // chunk offsets stay multiples of 32 KiB (any SSBO alignment)
 }  // namespace
 
 ShadowTargetsPass::ShadowTargetsPass()
@@ -71,8 +70,7 @@ void ShadowTargetsPass::runLevel(const gl::Program& fromLights, const gl::Progra
     return;
   }
   // S0 in chunks of one storage block.
-  const size_t chunk = std::max(
-      kLightChunkGranularity, maxBlockBytes_ / sizeof(gpu::GpuLight) / kLightChunkGranularity * kLightChunkGranularity);
+  const size_t chunk = lightChunkSize(maxBlockBytes_);
   for (size_t first = 0; first < inputLightCount; first += chunk) {
     const size_t count = std::min(chunk, inputLightCount - first);
     inputLights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight),
