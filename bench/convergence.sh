@@ -5,7 +5,8 @@
 # sponza_sun@atrium and cornell_emissive at 10K and 100K VPLs, 320x180, alpha 2, S1; plus the
 # unshadowed error of 4x4 interleaving accumulated over 16 frames against 1x1. Writes the sweeps under
 # OUT (default build-convergence/) and the table bench/results/convergence.md (bench/convergence_table.py).
-# Usage: bench/convergence.sh [BUILD_DIR] [OUT]   (about 40 minutes on 2 cores; references are cached)
+# Usage: bench/convergence.sh [BUILD_DIR] [OUT]   (over an hour on 2 cores, most of it the 64-frame points at
+# 100K VPLs; the Embree references are cached in build-sweep/reference-cache)
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$here/build}"
