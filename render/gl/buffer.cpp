@@ -1,5 +1,6 @@
 #include "render/gl/buffer.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace lgh::gl {
@@ -40,6 +41,12 @@ bool ensureSize(Buffer& buffer, size_t bytes, GLbitfield flags) {
   if (buffer && buffer.size() >= bytes) return false;
   buffer = Buffer(bytes, nullptr, flags);
   return true;
+}
+
+size_t maxStorageBlockBytes() {
+  GLint64 bytes = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);
+  return size_t(std::max<GLint64>(bytes, 0));
 }
 
 }  // namespace lgh::gl

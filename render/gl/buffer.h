@@ -55,4 +55,7 @@ class Buffer {
 // Grows (reallocates, contents lost) a buffer to at least `bytes`; returns true if it was reallocated.
 bool ensureSize(Buffer& buffer, size_t bytes, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
 
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes one shader storage block may span (128 MiB on llvmpipe).
+size_t maxStorageBlockBytes();
+
 }  // namespace lgh::gl

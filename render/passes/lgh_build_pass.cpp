@@ -56,9 +56,7 @@ LghBuildPass::LghBuildPass(bool floatAtomicsAvailable)
     scatterFloat_ = gl::Program::compute("lgh_scatter.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
     finalizeFloat_ = gl::Program::compute("lgh_finalize.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
   }
-  GLint64 maxBlock = 0;
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-  maxBlockBytes_ = size_t(std::max<GLint64>(maxBlock, 1 << 24));
+  maxBlockBytes_ = std::max<size_t>(gl::maxStorageBlockBytes(), 1 << 24);
 }
 
 template <typename Fn>

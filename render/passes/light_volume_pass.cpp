@@ -50,15 +50,13 @@ LightVolumePass::LightVolumePass(bool floatAtomics) : floatAtomics_(floatAtomics
   GLint alignment = 256;
   glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
   uniformStride_ = (sizeof(gpu::LightPassUniforms) + size_t(alignment) - 1) / size_t(alignment) * size_t(alignment);
-  GLint64 maxBlock = 0;
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
   GLint ssboAlignment = 256;
   glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &ssboAlignment);
   // Chunks start at multiples of this many lights, so every chunk's byte offset is aligned.
   const size_t lightsPerAlignment = std::max<size_t>(1, size_t(ssboAlignment) / sizeof(gpu::GpuLight));
-  maxBlockLights_ = std::max<size_t>(
-      size_t(std::max<GLint64>(maxBlock, 1 << 24)) / sizeof(gpu::GpuLight) / lightsPerAlignment * lightsPerAlignment,
-      lightsPerAlignment);
+  maxBlockLights_ = std::max<size_t>(std::max<size_t>(gl::maxStorageBlockBytes(), 1 << 24) / sizeof(gpu::GpuLight) /
+                                         lightsPerAlignment * lightsPerAlignment,
+                                     lightsPerAlignment);
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
   emptyVertexArray_ = gl::VertexArrayHandle(vao);

@@ -58,9 +58,7 @@ gl::Texture2D uploadTexture(const Texture& texture) {
 // GL). Textures that would overflow the shader storage block limit are subsampled by 2 until they fit:
 // they only colour VPLs, whose albedo needs no full resolution (the G-buffer samples the originals).
 void packTexels(const Scene& scene, std::vector<gpu::GpuTextureInfo>& infos, std::vector<std::uint32_t>& texels) {
-  GLint64 maxBlock = 0;
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-  const size_t maxTexels = size_t(maxBlock) / sizeof(std::uint32_t);
+  const size_t maxTexels = gl::maxStorageBlockBytes() / sizeof(std::uint32_t);
   for (const Texture& t : scene.textures) {
     int step = 1;
     while (texels.size() + size_t(t.width / step) * size_t(t.height / step) > maxTexels && step < 1 << 12) step *= 2;
