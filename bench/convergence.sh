@@ -6,7 +6,9 @@
 # unshadowed error of 4x4 interleaving accumulated over 16 frames against 1x1. Writes the sweeps under
 # OUT (default build-convergence/) and the table bench/results/convergence.md (bench/convergence_table.py).
 # Usage: bench/convergence.sh [BUILD_DIR] [OUT]   (over an hour on 2 cores, most of it the 64-frame points at
-# 100K VPLs; the Embree references are cached in build-sweep/reference-cache)
+# 100K VPLs; the Embree references are cached in build-sweep/reference-cache). A part of it: MODES (default
+# "lights paper"), SCENES (default "sponza_sun cornell_emissive"), VPLS (default "10000 100000") and
+# INTERLEAVE=0 (no interleaving rows); the table is made from whatever OUT holds.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$here/build}"
@@ -19,10 +21,12 @@ fi
 common=(--alpha 2 --start-level 1 --repeats 1 --retries 0 --uniform-lights 16 --uniform-shadowed-lights 2
         --brute-force-limit 0 --images false --cache-dir "$here/build-sweep/reference-cache")
 declare -A modes=([lights]="" [paper]="--set shadow-targets=0 --set shadow-skip-finest=true")
-for scene in "sponza_sun/sponza_sun.gltf@atrium" "cornell_emissive/cornell_emissive.gltf"; do
-  name="$(basename "${scene%%@*}" .gltf)"
-  for vpls in 10000 100000; do
-    for mode in lights paper; do
+declare -A paths=([sponza_sun]="sponza_sun/sponza_sun.gltf@atrium"
+                  [cornell_emissive]="cornell_emissive/cornell_emissive.gltf")
+for name in ${SCENES:-sponza_sun cornell_emissive}; do
+  scene="${paths[$name]}"
+  for vpls in ${VPLS:-10000 100000}; do
+    for mode in ${MODES:-lights paper}; do
       dir="$out/${name}_${vpls}_${mode}"
       # shellcheck disable=SC2086  # the mode's --set pairs split on purpose
       "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" ${modes[$mode]} \
@@ -30,6 +34,7 @@ for scene in "sponza_sun/sponza_sun.gltf@atrium" "cornell_emissive/cornell_emiss
       "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" ${modes[$mode]} \
         --interleave 1 --shadow-samples 4 --filter on --frames 4,16,64 --out "$dir/frames"
     done
+    [ "${INTERLEAVE:-1}" = 0 ] && continue
     "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" \
       --interleave 1,4 --shadow-samples 0 --frames 1,16 --out "$out/${name}_${vpls}_interleave"
   done

@@ -17,17 +17,28 @@ def main(out):
     cases = sorted({os.path.basename(d).rsplit("_", 1)[0] for d in glob.glob(os.path.join(out, "*_*_*"))})
     print("Relative RMSE of the shadowed indirect light (irradiance x visibility) against the Embree reference;")
     print("320x180, alpha 2, S1, 1x1. `lights`: rays to input lights drawn by share and resampled (default);")
-    print("`paper`: jittered cluster centres, S1 not selected. Unshadowed LGH error in brackets.\n")
-    header = "| scene, VPLs | targets | k=1 | k=4 | k=16 | k=4 raw | k=16 raw | 16/4 raw | 4 frames | 16 frames | 64 frames | 64 frames / unshadowed |"
+    print("`paper`: jittered cluster centres, S1 not selected. Unshadowed LGH error in brackets. Floor: the")
+    print("error of the LGH irradiance times the reference's own visibility ratio, what exact shadows would reach")
+    print("(sweep column rmse_exact_ratio); beyond the floor: sqrt(e^2 - floor^2), the shadow estimate's own error.\n")
+    header = ("| scene, VPLs | targets | k=1 | k=4 | k=16 | k=4 raw | k=16 raw | 16/4 raw | floor | 16/4 raw beyond the floor "
+              "| 4 frames | 16 frames | 64 frames | 64 frames / unshadowed |")
     print(header)
     print("|" + "---|" * (header.count("|") - 1))
     for case in cases:
         scene, vpls = case.rsplit("_", 1)
+        # The floor depends on the irradiance alone, the same in both modes: taken from whichever measured it.
+        case_floors = [float(r["rmse_exact_ratio"]) for m in ("lights", "paper")
+                       if os.path.exists(os.path.join(out, f"{case}_{m}", "k", "sweep.csv"))
+                       for r in rows(os.path.join(out, f"{case}_{m}", "k", "sweep.csv")) if r.get("rmse_exact_ratio")]
         for mode in ("lights", "paper"):
             d = os.path.join(out, f"{case}_{mode}")
             if not os.path.exists(f"{d}/k/sweep.csv"):
                 continue
             ks = {(r["shadow_samples"], r["filter"]): float(r["rmse_shadowed"]) for r in rows(f"{d}/k/sweep.csv")}
+            floor = case_floors[0] if case_floors else None
+            beyond = lambda e: (e * e - floor * floor) ** 0.5 if floor is not None and e > floor else None
+            noise = (f"{beyond(ks[('16', 'off')]) / beyond(ks[('4', 'off')]):.2f}x"
+                     if beyond(ks[("16", "off")]) and beyond(ks[("4", "off")]) else "not measured")
             fs = {}
             if os.path.exists(f"{d}/frames/sweep.csv"):
                 fs = {(r["frames"], r["filter"]): float(r["rmse_shadowed"]) for r in rows(f"{d}/frames/sweep.csv")}
@@ -36,6 +47,7 @@ def main(out):
             print(f"| {scene}, {int(vpls) // 1000}K ({unshadowed:.3f}) | {mode} | "
                   + " | ".join(cell(ks[(k, "on")]) for k in ("1", "4", "16")) + " | "
                   + f"{cell(ks[('4', 'off')])} | {cell(ks[('16', 'off')])} | {ks[('16', 'off')] / ks[('4', 'off')]:.2f}x | "
+                  + (f"{floor:.3f}" if floor is not None else "not measured") + f" | {noise} | "
                   + " | ".join(cell(fs.get((f, "on"))) for f in ("4", "16", "64")) + " | "
                   + (f"{fs[('64', 'on')] / unshadowed:.2f}x" if ("64", "on") in fs else "not run") + " |")
     print("\nUnshadowed error of n x n interleaving, one frame and 16 accumulated still frames (light-to-tile")

@@ -42,6 +42,7 @@ struct Measurement {
   bool extrapolated = false;
   LightStats lights;
   std::vector<double> rmseUnshadowed, psnrUnshadowed, rmseShadowed, psnrShadowed;
+  std::vector<double> rmseExactRatio;  // LGH: the irradiance with the reference's visibility ratio (the floor)
   double othersCpu = 0;  // the largest share of the machine other processes took during an accepted sample
   std::string image;     // .npy of the (shadowed) estimate, relative to the output folder
 

@@ -88,7 +88,7 @@ constexpr const char* kCsvHeader =
     "shadow_samples,filter,subset_lights,levels,grid_lights,fragments_per_pixel,shaded_per_pixel,time_ms,time_ms_min,"
     "time_ms_max,time_unshadowed_ms,build_ms,light_pass_ms,interleave_ms,shadow_rays_ms,shadow_filter_ms,frame_ms,"
     "extrapolated,rmse_unshadowed,psnr_unshadowed,rmse_shadowed,psnr_shadowed,rmse_shadowed_min,rmse_shadowed_max,"
-    "reference_pixels,others_cpu,image,frames";
+    "reference_pixels,others_cpu,image,frames,rmse_exact_ratio";
 
 std::string num(double v) {
   if (!std::isfinite(v)) return std::string();
@@ -150,7 +150,8 @@ std::vector<std::string> csvCells(const Case& c, const Measurement& m) {
         c.scaling ? "" : std::to_string(c.reference.pixels),
         num(std::round(m.othersCpu * 100) / 100),
         m.image,
-        m.lgh() ? std::to_string(m.point.frames) : ""})
+        m.lgh() ? std::to_string(m.point.frames) : "",
+        num(median(m.rmseExactRatio))})
     cells.push_back(std::move(cell));
   return cells;
 }
@@ -188,6 +189,9 @@ json definitionsJson() {
            "unshadowed estimate: LGH build + split + light pass + resolve; brute_force and uniform: "
            "the rasterized brute-force light pass (every light full-screen)"},
           {"rmse", "relative RMSE of luminance, sqrt(sum (a - r)^2 / sum r^2), over the reference's pixels"},
+          {"rmse_exact_ratio",
+           "LGH: the relative RMSE of its irradiance times the reference's own visibility ratio (shadowed / "
+           "unshadowed luminance): the floor any shadow estimate composited on this irradiance can reach"},
           {"psnr", "10 log10(max r^2 / mean (a - r)^2) over the reference's pixels, luminance, dB"},
           {"compared",
            "irradiance before albedo: Aov::Irradiance (unshadowed) and Aov::Irradiance x Aov::Visibility (shadowed)"},
@@ -230,6 +234,7 @@ json measurementJson(const Measurement& m, const json& baseSettings) {
   jm["psnr_unshadowed"] = significant(m.psnrUnshadowed);
   jm["rmse_shadowed"] = significant(m.rmseShadowed);
   jm["psnr_shadowed"] = significant(m.psnrShadowed);
+  if (!m.rmseExactRatio.empty()) jm["rmse_exact_ratio"] = significant(m.rmseExactRatio);
   if (!m.image.empty()) jm["image"] = m.image;
   return jm;
 }

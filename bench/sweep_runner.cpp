@@ -171,7 +171,10 @@ Measurement SweepRunner::measureLgh(BenchRenderer& bench, const RenderSettings& 
     const ImageRGBA irradiance = bench.renderer().readImage(Aov::Irradiance);
     const ImageRGBA visibility = bench.renderer().readImage(Aov::Visibility);
     m.addUnshadowedError(unshadowedError(*ref, irradiance));
-    if (point.k > 0 && !ref->shadowed.empty()) m.addShadowedError(shadowedError(*ref, irradiance, &visibility));
+    if (point.k > 0 && !ref->shadowed.empty()) {
+      m.addShadowedError(shadowedError(*ref, irradiance, &visibility));
+      m.rmseExactRatio.push_back(exactRatioError(*ref, irradiance).rmse);
+    }
     if (r == options_.repeats - 1 && images)
       images->write(m, fileLabel(point), irradiance, point.k > 0 ? &visibility : nullptr);
   }

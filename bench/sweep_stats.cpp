@@ -17,6 +17,15 @@ ErrorStats shadowedError(const reference::ReferenceImage& ref, const ImageRGBA& 
                    [&](std::uint32_t i) { return luminance(irradiance.pixels[i]) * double(visibility->pixels[i].r); });
 }
 
+ErrorStats exactRatioError(const reference::ReferenceImage& ref, const ImageRGBA& irradiance) {
+  std::vector<double> ratio(irradiance.pixels.size(), 0.0);
+  for (size_t k = 0; k < ref.pixels.size(); ++k) {
+    const double unshadowed = luminance(ref.unshadowed[k]);
+    ratio[ref.pixels[k]] = unshadowed > 0 ? luminance(ref.shadowed[k]) / unshadowed : 0.0;
+  }
+  return errorOver(ref, ref.shadowed, [&](std::uint32_t i) { return luminance(irradiance.pixels[i]) * ratio[i]; });
+}
+
 double median(const std::vector<double>& samples) { return samples.empty() ? kNaN : spreadOf(samples).median; }
 
 double extrapolateLinear(const std::vector<std::pair<double, double>>& points, double at) {

@@ -46,6 +46,10 @@ ErrorStats unshadowedError(const reference::ReferenceImage& ref, const ImageRGBA
 // of `irradiance` alone where the image is already shadowed (visibility null).
 ErrorStats shadowedError(const reference::ReferenceImage& ref, const ImageRGBA& irradiance,
                          const ImageRGBA* visibility);
+// Against the shadowed reference: the luminance of irradiance x the reference's own visibility ratio
+// (shadowed / unshadowed luminance). The floor of any ratio estimate composited on this irradiance:
+// what a shadow estimate would reach with infinitely many exact samples.
+ErrorStats exactRatioError(const reference::ReferenceImage& ref, const ImageRGBA& irradiance);
 
 // The median of the samples; NaN when there are none.
 double median(const std::vector<double>& samples);

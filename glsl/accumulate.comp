@@ -5,12 +5,14 @@
 // values to the history's sums:
 //   irradiance sum  rgb: sum of E_f (unresolved: with n x n interleaving the tile's n^2-scaled value)
 //                   a:   N, frames in the history
-//   ratio sum       r: sum of lum(E_f) r_f, g: sum of lum(E_f), b: sum of r_f
+//   ratio sum       r: sum of lum(E_f) D_f r_f, g: sum of lum(E_f) D_f, b: sum of r_f, a: sum of lum(E_f)
+//                   (D_f: the frame's ratio weight, the shadow samples' mean weight; 1 unweighted)
 // Raw, not filtered, values are summed so that the sums converge to the exact estimate instead of to
 // a filtered one. Outputs, in place: the accumulated irradiance sum / N (with interleaving only once
 // N >= n^2, when the rotated dealing has given the pixel every light; before that the resolved
-// irradiance of this frame stays), and the accumulated ratio sum(lum E r) / sum(lum E) (a ratio
-// estimator, weighted as the a-trous filter weighs its taps) with N in alpha for the filter.
+// irradiance of this frame stays), and the accumulated ratio sum(lum E D r) / sum(lum E D) (a ratio
+// estimator, weighted as the a-trous filter weighs its taps) with the mean weight sum(lum E D) / sum(lum E)
+// in blue and N in alpha for the filter.
 // With N = 1 the outputs are this frame's values bit for bit.
 // Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
 // irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, but
@@ -36,18 +38,18 @@ layout(rgba32f, binding = LGH_IMAGE_ACCUM_RATIO_SUM) uniform writeonly image2D r
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_POSITION) uniform writeonly image2D positionOut;
 layout(rgba16f, binding = LGH_IMAGE_ACCUM_NORMAL) uniform writeonly image2D normalOut;
 
-uniform int stage;                          // 0: sums and outputs; 1: resolve of incomplete interleaved sums
-uniform float normalPower;                  // stage 1: neighbour weight max(0, n.n')^normalPower
-uniform float planeSigma;                   // stage 1: tangent-plane distance in pixel footprints at weight e^-1/2
-uniform int hasHistory;                     // 0: restart (every pixel's history is empty)
-uniform int shadowed;                       // the ratio image holds this frame's raw ratio
-uniform mat4 previousViewProjection;        // camera-relative: clip = M (p - previousCameraPosition)
+uniform int stage;                    // 0: sums and outputs; 1: resolve of incomplete interleaved sums
+uniform float normalPower;            // stage 1: neighbour weight max(0, n.n')^normalPower
+uniform float planeSigma;             // stage 1: tangent-plane distance in pixel footprints at weight e^-1/2
+uniform int hasHistory;               // 0: restart (every pixel's history is empty)
+uniform int shadowed;                 // the ratio image holds this frame's raw ratio
+uniform mat4 previousViewProjection;  // camera-relative: clip = M (p - previousCameraPosition)
 uniform vec3 previousCameraPosition;
-uniform uint tilesPerAxis;                  // n
+uniform uint tilesPerAxis;  // n
 uniform uvec2 tileSize;
-uniform float maxFrames;                    // history length cap
-uniform float planeTolerance;               // tangent-plane distance, in pixel footprints, still the same surface
-uniform float normalTolerance;              // smallest n . n' still the same surface
+uniform float maxFrames;        // history length cap
+uniform float planeTolerance;   // tangent-plane distance, in pixel footprints, still the same surface
+uniform float normalTolerance;  // smallest n . n' still the same surface
 
 ivec2 tiledCoord(ivec2 pixel) {
   uvec2 p = uvec2(pixel);
@@ -91,8 +93,8 @@ void resolveIncomplete(ivec2 pixel, ivec2 size) {
       if (qPosition.w == 0.0 || qSum.a == 0.0) continue;
       float window = (even && halfX > 0 && abs(dx) == half_ ? 0.5 : 1.0) * (even && abs(dy) == half_ ? 0.5 : 1.0);
       float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
-      float w = window * pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) *
-                exp(-0.5 * plane * plane);
+      float w =
+          window * pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) * exp(-0.5 * plane * plane);
       sum += w * qSum.rgb / qSum.a;
       weightSum += w;
     }
@@ -132,12 +134,13 @@ void main() {
     irradianceSum *= keep;
     ratioSum *= keep;
   }
-  vec3 e = tilesPerAxis > 1u ? texelFetch(rawIrradiance, tiledCoord(pixel), 0).rgb : texelFetch(rawIrradiance, pixel, 0).rgb;
+  vec3 e =
+      tilesPerAxis > 1u ? texelFetch(rawIrradiance, tiledCoord(pixel), 0).rgb : texelFetch(rawIrradiance, pixel, 0).rgb;
   vec4 rawRatio = imageLoad(ratio, pixel);
-  float r = shadowed != 0 ? rawRatio.r : 1.0;
+  float r = shadowed != 0 ? rawRatio.r : 1.0, weight = shadowed != 0 ? rawRatio.b : 1.0;
   float l = max(luminance(e), 0.0);
   irradianceSum += vec4(e, 1.0);
-  ratioSum += vec4(l * r, l, r, 0.0);
+  ratioSum += vec4(l * weight * r, l * weight, r, l);
   imageStore(irradianceSumOut, pixel, irradianceSum);
   imageStore(ratioSumOut, pixel, ratioSum);
   float frames = irradianceSum.a;
@@ -147,6 +150,7 @@ void main() {
     imageStore(irradiance, pixel, vec4(irradianceSum.rgb / frames, imageLoad(irradiance, pixel).a));
   if (shadowed != 0) {
     float accumulated = ratioSum.g > 0.0 ? ratioSum.r / ratioSum.g : ratioSum.b / frames;
-    imageStore(ratio, pixel, vec4(clamp(accumulated, 0.0, 1.0), rawRatio.g, 0.0, frames));
+    float meanWeight = ratioSum.a > 0.0 ? ratioSum.g / ratioSum.a : weight;
+    imageStore(ratio, pixel, vec4(clamp(accumulated, 0.0, 1.0), rawRatio.g, meanWeight, frames));
   }
 }

@@ -1,8 +1,8 @@
 #version 450 core
 // Edge-avoiding a-trous wavelet filter (Dammertz et al. 2010) of the shadow ratio, as a ratio
-// estimator (Heitz et al. 2018): the shadowed (S = U x raw ratio) and unshadowed (U) luminances are
+// estimator (Heitz et al. 2018): the shadowed (S = U D x raw ratio) and unshadowed (U D) luminances are
 // filtered with the same weights and divided at the end, so the ratio is averaged in proportion to
-// the light each neighbour receives.
+// the light each neighbour receives (D: the raw ratio's own weight, its samples' mean weight, blue).
 // With temporal accumulation the ratio holds N frames (alpha of the raw ratio): its noise falls as
 // 1/sqrt(N), and the ratio sigma shrinks as N^-sigmaFade so that the filter's blur across shadow
 // edges does not become the accumulated estimate's error floor.
@@ -15,25 +15,26 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
 
-layout(binding = LGH_TEXTURE_FILTER_SIGNAL) uniform sampler2D signalIn;    // stage 0: raw ratio (r); 1, 2: (S, U) in r, g
-layout(binding = LGH_TEXTURE_FILTER_SECOND) uniform sampler2D irradiance;  // unshadowed irradiance (stage 0), raw ratio (stage 2)
+layout(binding = LGH_TEXTURE_FILTER_SIGNAL)
+    uniform sampler2D signalIn;  // stage 0: raw ratio (r), weight (b); 1, 2: (S, U) in r, g
+layout(binding = LGH_TEXTURE_FILTER_SECOND) uniform sampler2D
+    irradiance;  // unshadowed irradiance (stage 0), raw ratio (stage 2)
 layout(rgba32f, binding = LGH_IMAGE_FILTER_OUT) uniform writeonly image2D signalOut;
 uniform int stage;
 uniform int stepSize;
-uniform float normalPower;   // weight max(0, n.n')^normalPower
-uniform float planeSigma;    // tangent-plane distance, in pixel footprints x stepSize, at weight e^-1/2
-uniform float ratioSigma;    // ratio difference at weight e^-1/2 (from the second pass on: the first
-                             // pass sees raw ratios, with k = 1 only 0 or 1, which would stop every tap)
-uniform float sigmaFade;     // ratio sigma x N^-sigmaFade for a ratio accumulated over N frames
-
+uniform float normalPower;  // weight max(0, n.n')^normalPower
+uniform float planeSigma;   // tangent-plane distance, in pixel footprints x stepSize, at weight e^-1/2
+uniform float ratioSigma;   // ratio difference at weight e^-1/2 (from the second pass on: the first
+                            // pass sees raw ratios, with k = 1 only 0 or 1, which would stop every tap)
+uniform float sigmaFade;    // ratio sigma x N^-sigmaFade for a ratio accumulated over N frames
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = ivec2(frame.resolution.xy);
   if (any(greaterThanEqual(pixel, size))) return;
   if (stage == 0) {
-    float u = max(luminance(texelFetch(irradiance, pixel, 0).rgb), 0.0);
     vec4 raw = texelFetch(signalIn, pixel, 0);
+    float u = max(luminance(texelFetch(irradiance, pixel, 0).rgb), 0.0) * max(raw.b, 0.0);
     // alpha: frames accumulated (1 for a single frame), carried through the passes for the fade
     imageStore(signalOut, pixel, vec4(u * raw.r, u, raw.r, max(raw.a, 1.0)));
     return;

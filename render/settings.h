@@ -57,6 +57,7 @@ struct ShadowSettings {
   bool uniform = false;     // pick lights uniformly instead of by contribution (for comparison)
   int targets = 8;          // input lights drawn per grid light each frame as ray targets; 0: jittered centres
   bool resampleTargets = true;  // each pixel picks among the drawn targets by what they add there
+  bool weighTargets = true;     // weigh a sample by what its drawn targets add over what the centre adds
   float spread = 1.0f;          // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
 };
 
@@ -162,6 +163,10 @@ void visitSettings(Settings& s, Visitor&& visit) {
         SettingInfo{"shadow-resample-targets",
                     "each pixel picks among a grid light's drawn targets by their unshadowed contribution there "
                     "(false: by brightness alone, as drawn)"});
+  visit(shadows.weighTargets,
+        SettingInfo{"shadow-weigh-targets",
+                    "weigh each shadow sample by what its grid light's drawn targets add at the pixel over what the "
+                    "grid light's centre adds (the selection's weight), so the ratio converges to the exact one"});
   visit(shadows.spread, SettingInfo{"shadow-spread",
                                     "jitter of a cluster's shadow-ray target with shadow-targets=0, in its standard "
                                     "deviations",
