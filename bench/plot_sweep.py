@@ -446,6 +446,12 @@ def short_label(row):
     return text + (" raw" if row["filter"] == "off" else "")
 
 
+def table_label(row):
+    """'a=2 S0 4x4 k=4' (+ ' raw'): every setting spelled out, for the summary's tables."""
+    text = f"a={float(row['alpha']):g} S{row['start_level']} {row['interleave']}x{row['interleave']} k={row['shadow_samples']}"
+    return text + (" raw" if row["filter"] == "off" else "")
+
+
 def load_json(csv_path):
     path = os.path.splitext(csv_path)[0] + ".json"
     try:
@@ -537,7 +543,7 @@ def summary(results, rows, info):
             add("|---|---:|---:|---:|---|---:|---:|")
             for x in un["equal_error"]:
                 r = x["row"]
-                add(f"| {short_label(r)} k={r['shadow_samples']} | {fmt_ms(x['time'])} | {x['error']:.3f} | "
+                add(f"| {table_label(r)} | {fmt_ms(x['time'])} | {x['error']:.3f} | "
                     f"{float(r['fragments_per_pixel']):,.0f} | "
                     + (f"{x['uniform_lights']:,.0f}, {fmt_ms(x['uniform_time'])}" if "uniform_time" in x else "-")
                     + f" | {x.get('speedup_uniform', float('nan')):.1f}x | {x.get('speedup_brute', float('nan')):.0f}x |")
@@ -548,7 +554,7 @@ def summary(results, rows, info):
             add("|---|---:|---:|---:|---:|---:|")
             for x in sh["equal_error"]:
                 r = x["row"]
-                add(f"| {short_label(r)} k={r['shadow_samples']} | {fmt_ms(x['time'])} | {x['error']:.3f} | "
+                add(f"| {table_label(r)} | {fmt_ms(x['time'])} | {x['error']:.3f} | "
                     f"{float(r['rmse_unshadowed']):.3f} | {float(r['fragments_per_pixel']):,.0f} | "
                     f"{x.get('speedup_brute', float('nan')):,.0f}x |")
             add("")

@@ -151,7 +151,8 @@ void main() {
         weight *= luminance(e);
       }
       weights += weight;
-      if (weight == 0.0) continue;  // none of g's drawn lights reaches x: a ray would decide nothing
+      // The sample adds nothing here (no drawn light reaches x): a ray would decide nothing.
+      if (weight == 0.0) continue;
       vec3 toLight = target - origin;
       float d = length(toLight);
       // Stop short of the light by a relative margin: VPLs sit on surfaces, and so may a cluster's centre.
