@@ -4,8 +4,10 @@
 // filtered with the same weights and divided at the end, so the ratio is averaged in proportion to
 // the light each neighbour receives (D: the raw ratio's own weight, its samples' mean weight, blue).
 // With temporal accumulation the ratio holds N frames (alpha of the raw ratio): its noise falls as
-// 1/sqrt(N), and the ratio sigma shrinks as N^-sigmaFade so that the filter's blur across shadow
-// edges does not become the accumulated estimate's error floor.
+// 1/sqrt(N), and the ratio sigma shrinks as N^-sigmaFade and the pixel skips the floor(sigmaFade
+// log2 N) widest passes (at fade 1/2: one per 4x the frames, as the noise halves), so that the filter's
+// blur across shadow edges and contact shadows does not become the accumulated estimate's error floor:
+// the filter vanishes as N grows.
 //   stage 0: (raw ratio, irradiance) -> (S, U)
 //   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U)
 //   stage 2: (S, U) -> filtered ratio S / U; the raw ratio where no neighbour received light (U = 0)
@@ -27,6 +29,7 @@ uniform float planeSigma;   // tangent-plane distance, in pixel footprints x ste
 uniform float ratioSigma;   // ratio difference at weight e^-1/2 (from the second pass on: the first
                             // pass sees raw ratios, with k = 1 only 0 or 1, which would stop every tap)
 uniform float sigmaFade;    // ratio sigma x N^-sigmaFade for a ratio accumulated over N frames
+uniform int passes;         // the filter's stage-1 passes (steps 1, 2, ..., 2^(passes - 1))
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -50,6 +53,11 @@ void main() {
   }
   Surface s = loadSurface(pixel);
   if (!s.valid) {
+    imageStore(signalOut, pixel, centre);
+    return;
+  }
+  int kept = passes - int(floor(sigmaFade * log2(max(centre.a, 1.0))));
+  if (stepSize >= (1 << clamp(kept, 0, 30))) {  // one of the widest passes, skipped at N frames
     imageStore(signalOut, pixel, centre);
     return;
   }

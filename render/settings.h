@@ -78,7 +78,8 @@ struct ShadowFilterSettings {
 struct AccumulationSettings {
   bool enabled = false;
   int maxFrames = 1024;     // history length cap: beyond it the oldest frames fade out (moving average)
-  float filterFade = 0.5f;  // a-trous ratio sigma x N^-filterFade for N accumulated frames (0: no fade)
+  float filterFade = 0.5f;  // a-trous ratio sigma x N^-filterFade and floor(filterFade log2 N) widest passes
+                            // skipped for N accumulated frames (0: no fade)
 };
 
 struct RenderSettings {
@@ -185,10 +186,12 @@ void visitSettings(Settings& s, Visitor&& visit) {
                     "viewer and in lgh-render with --frames > 1)"});
   visit(accumulation.maxFrames,
         SettingInfo{"accumulate-max-frames", "frames the history holds at most; older ones fade out", 1, 1 << 20});
-  visit(accumulation.filterFade,
-        SettingInfo{"accumulate-filter-fade",
-                    "the a-trous ratio sigma shrinks as N^-fade with N accumulated frames (0: filter as for one frame)",
-                    0, 4});
+  visit(
+      accumulation.filterFade,
+      SettingInfo{"accumulate-filter-fade",
+                  "the a-trous ratio sigma shrinks as N^-fade with N accumulated frames, and floor(fade log2 N) of the "
+                  "widest passes are skipped (0: filter as for one frame)",
+                  0, 4});
 }
 
 // Sets the setting called `name` from text, checking its type and range (the viewer's `set`, the

@@ -55,6 +55,7 @@ void ShadowFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& rawR
   program_.set("planeSigma", std::max(options.planeSigma, 1e-6f));
   program_.set("ratioSigma", std::max(options.ratioSigma, 1e-6f));
   program_.set("sigmaFade", sigmaFade);
+  program_.set("passes", options.passes);
   auto run = [&](int stage, const gl::Texture2D& in, const gl::Texture2D& second, gl::Texture2D& out, int step) {
     in.bindTexture(LGH_TEXTURE_FILTER_SIGNAL);
     second.bindTexture(LGH_TEXTURE_FILTER_SECOND);
