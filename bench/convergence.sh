@@ -7,8 +7,8 @@
 # OUT (default build-convergence/) and the table bench/results/convergence.md (bench/convergence_table.py).
 # Usage: bench/convergence.sh [BUILD_DIR] [OUT]   (over an hour on 2 cores, most of it the 64-frame points at
 # 100K VPLs; the Embree references are cached in build-sweep/reference-cache). A part of it: MODES (default
-# "lights paper"), SCENES (default "sponza_sun cornell_emissive"), VPLS (default "10000 100000") and
-# INTERLEAVE=0 (no interleaving rows); the table is made from whatever OUT holds.
+# "lights paper"), SCENES (default "sponza_sun cornell_emissive"), VPLS (default "10000 100000"), PARTS
+# (default "k frames") and INTERLEAVE=0 (no interleaving rows); the table is made from whatever OUT holds.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$here/build}"
@@ -28,11 +28,15 @@ for name in ${SCENES:-sponza_sun cornell_emissive}; do
   for vpls in ${VPLS:-10000 100000}; do
     for mode in ${MODES:-lights paper}; do
       dir="$out/${name}_${vpls}_${mode}"
-      # shellcheck disable=SC2086  # the mode's --set pairs split on purpose
-      "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" ${modes[$mode]} \
-        --interleave 1 --shadow-samples 1,4,16 --filter on,off --frames 1 --out "$dir/k"
-      "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" ${modes[$mode]} \
-        --interleave 1 --shadow-samples 4 --filter on --frames 4,16,64 --out "$dir/frames"
+      read -ra flags <<< "${modes[$mode]}"  # the mode's --set pairs, as separate arguments
+      if [[ " ${PARTS:-k frames} " == *" k "* ]]; then
+        "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" "${flags[@]}" \
+          --interleave 1 --shadow-samples 1,4,16 --filter on,off --frames 1 --out "$dir/k"
+      fi
+      if [[ " ${PARTS:-k frames} " == *" frames "* ]]; then
+        "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" "${flags[@]}" \
+          --interleave 1 --shadow-samples 4 --filter on --frames 4,16,64 --out "$dir/frames"
+      fi
     done
     [ "${INTERLEAVE:-1}" = 0 ] && continue
     "$build/lgh-bench" sweep --scene "$scenes/$scene" --vpls "$vpls" "${common[@]}" \
