@@ -16,7 +16,7 @@ def rows(path):
 def main(out):
     cases = sorted({os.path.basename(d).rsplit("_", 1)[0] for d in glob.glob(os.path.join(out, "*_*_*"))})
     print("Relative RMSE of the shadowed indirect light (irradiance x visibility) against the Embree reference;")
-    print("320x180, alpha 2, S1, 1x1. `lights`: rays to input lights drawn by share and resampled (default);")
+    print("320x180, alpha 2, S1, 1x1. `lights`: rays to input lights drawn by share, resampled and weighed (default);")
     print("`paper`: jittered cluster centres, S1 not selected. Unshadowed LGH error in brackets. Floor: the")
     print("error of the LGH irradiance times the reference's own visibility ratio, what exact shadows would reach")
     print("(sweep column rmse_exact_ratio); beyond the floor: sqrt(e^2 - floor^2), the shadow estimate's own error.\n")
