@@ -26,15 +26,13 @@ def main(out):
     print("|" + "---|" * (header.count("|") - 1))
     for case in cases:
         scene, vpls = case.rsplit("_", 1)
+        k_rows = {m: rows(p) for m in ("lights", "paper")
+                  if os.path.exists(p := os.path.join(out, f"{case}_{m}", "k", "sweep.csv"))}
         # The floor depends on the irradiance alone, the same in both modes: taken from whichever measured it.
-        case_floors = [float(r["rmse_exact_ratio"]) for m in ("lights", "paper")
-                       if os.path.exists(os.path.join(out, f"{case}_{m}", "k", "sweep.csv"))
-                       for r in rows(os.path.join(out, f"{case}_{m}", "k", "sweep.csv")) if r.get("rmse_exact_ratio")]
-        for mode in ("lights", "paper"):
+        case_floors = [float(r["rmse_exact_ratio"]) for rs in k_rows.values() for r in rs if r.get("rmse_exact_ratio")]
+        for mode, mode_rows in k_rows.items():
             d = os.path.join(out, f"{case}_{mode}")
-            if not os.path.exists(f"{d}/k/sweep.csv"):
-                continue
-            ks = {(r["shadow_samples"], r["filter"]): float(r["rmse_shadowed"]) for r in rows(f"{d}/k/sweep.csv")}
+            ks = {(r["shadow_samples"], r["filter"]): float(r["rmse_shadowed"]) for r in mode_rows}
             floor = case_floors[0] if case_floors else None
             beyond = lambda e: (e * e - floor * floor) ** 0.5 if floor is not None and e > floor else None
             noise = (f"{beyond(ks[('16', 'off')]) / beyond(ks[('4', 'off')]):.2f}x"
@@ -42,7 +40,7 @@ def main(out):
             fs = {}
             if os.path.exists(f"{d}/frames/sweep.csv"):
                 fs = {(r["frames"], r["filter"]): float(r["rmse_shadowed"]) for r in rows(f"{d}/frames/sweep.csv")}
-            unshadowed = float(rows(f"{d}/k/sweep.csv")[0]["rmse_unshadowed"])
+            unshadowed = float(mode_rows[0]["rmse_unshadowed"])
             cell = lambda v: f"{v:.3f}" if v is not None else "not run"
             print(f"| {scene}, {int(vpls) // 1000}K ({unshadowed:.3f}) | {mode} | "
                   + " | ".join(cell(ks[(k, "on")]) for k in ("1", "4", "16")) + " | "

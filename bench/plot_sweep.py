@@ -438,17 +438,12 @@ def fmt_ms(v):
     return "-" if v is None else (f"{v:,.0f}" if v >= 100 else f"{v:.1f}")
 
 
-def short_label(row):
-    """'a=2 S0 4x4' (+ ' k=1', ' raw' where not the default k = 4 with the filter; k = 0 is implied)."""
+def short_label(row, spell_k=False):
+    """'a=2 S0 4x4' (+ ' k=1', ' raw' where not the default k = 4 with the filter; k = 0 is implied);
+    spell_k: k always spelled out, as the summary's tables do."""
     text = f"a={float(row['alpha']):g} S{row['start_level']} {row['interleave']}x{row['interleave']}"
-    if row["shadow_samples"] not in ("0", "4"):
+    if spell_k or row["shadow_samples"] not in ("0", "4"):
         text += f" k={row['shadow_samples']}"
-    return text + (" raw" if row["filter"] == "off" else "")
-
-
-def table_label(row):
-    """'a=2 S0 4x4 k=4' (+ ' raw'): every setting spelled out, for the summary's tables."""
-    text = f"a={float(row['alpha']):g} S{row['start_level']} {row['interleave']}x{row['interleave']} k={row['shadow_samples']}"
     return text + (" raw" if row["filter"] == "off" else "")
 
 
@@ -543,7 +538,7 @@ def summary(results, rows, info):
             add("|---|---:|---:|---:|---|---:|---:|")
             for x in un["equal_error"]:
                 r = x["row"]
-                add(f"| {table_label(r)} | {fmt_ms(x['time'])} | {x['error']:.3f} | "
+                add(f"| {short_label(r, spell_k=True)} | {fmt_ms(x['time'])} | {x['error']:.3f} | "
                     f"{float(r['fragments_per_pixel']):,.0f} | "
                     + (f"{x['uniform_lights']:,.0f}, {fmt_ms(x['uniform_time'])}" if "uniform_time" in x else "-")
                     + f" | {x.get('speedup_uniform', float('nan')):.1f}x | {x.get('speedup_brute', float('nan')):.0f}x |")
@@ -554,7 +549,7 @@ def summary(results, rows, info):
             add("|---|---:|---:|---:|---:|---:|")
             for x in sh["equal_error"]:
                 r = x["row"]
-                add(f"| {table_label(r)} | {fmt_ms(x['time'])} | {x['error']:.3f} | "
+                add(f"| {short_label(r, spell_k=True)} | {fmt_ms(x['time'])} | {x['error']:.3f} | "
                     f"{float(r['rmse_unshadowed']):.3f} | {float(r['fragments_per_pixel']):,.0f} | "
                     f"{x.get('speedup_brute', float('nan')):,.0f}x |")
             add("")

@@ -3,8 +3,9 @@
 // any-hit through the scene BVH. A selected grid light is reached through one of its input lights,
 // drawn by its share of the grid light's importance (shadow_targets.comp), or, as in the paper,
 // through its centre jittered by the cluster's spread (when no targets were drawn). Writes the raw visibility ratio:
-// the mean of the k visibilities (importance selection, each sample already drawn in proportion to its contribution) or
-// the contribution-weighted mean (uniform selection).
+// the mean of the k visibilities (importance selection, each sample already drawn in proportion to its contribution),
+// weighted by what the grid light's drawn lights add over what its centre adds (weighTargets), or the
+// contribution-weighted mean (uniform selection); and the samples' mean weight (blue).
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/bindings.h"
 #include "shared/bvh_traverse.glsl"

@@ -49,4 +49,11 @@ size_t maxStorageBlockBytes() {
   return size_t(std::max<GLint64>(bytes, 0));
 }
 
+size_t storageBlockElements(size_t elementSize) {
+  GLint alignment = 256;
+  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
+  const size_t step = std::max<size_t>(1, size_t(alignment) / elementSize);
+  return std::max(std::max(maxStorageBlockBytes(), kMinStorageBlockBytes) / elementSize / step * step, step);
+}
+
 }  // namespace lgh::gl

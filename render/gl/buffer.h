@@ -58,4 +58,12 @@ bool ensureSize(Buffer& buffer, size_t bytes, GLbitfield flags = GL_DYNAMIC_STOR
 // GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes one shader storage block may span (128 MiB on llvmpipe).
 size_t maxStorageBlockBytes();
 
+// The least GL_MAX_SHADER_STORAGE_BLOCK_SIZE of any GL 4.3+ implementation (16 MiB).
+inline constexpr size_t kMinStorageBlockBytes = size_t(1) << 24;
+
+// The most elements of `elementSize` bytes one storage block binding holds (at least
+// kMinStorageBlockBytes' worth), a multiple of the elements per GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT
+// so that chunks bound one after another all start aligned.
+size_t storageBlockElements(size_t elementSize);
+
 }  // namespace lgh::gl

@@ -11,15 +11,10 @@ namespace lgh {
 BruteForcePass::BruteForcePass()
     : program_(gl::Program::compute("brute_force.comp")),
       shadowed_(gl::Program::compute("brute_force.comp", {{"LGH_SHADOWED", "1"}})) {
-  GLint alignment = 256;
-  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
-  const size_t step = std::max<size_t>(1, size_t(alignment) / sizeof(gpu::GpuLight));
-  maxBlockLights_ =
-      std::max(std::max<size_t>(gl::maxStorageBlockBytes(), 1 << 24) / sizeof(gpu::GpuLight) / step * step, step);
   // llvmpipe ends a shader invocation's loops after 65,535 iterations in total (gallivm's loop
   // limiter, one counter for all loops of the invocation), which silently dropped every light past
   // the 65,535th: keep each dispatch's loop iterations under it.
-  maxBlockLights_ = std::min(maxBlockLights_, kMaxLightsPerDispatch);
+  maxBlockLights_ = std::min(gl::storageBlockElements(sizeof(gpu::GpuLight)), kMaxLightsPerDispatch);
 }
 
 void BruteForcePass::execute(const GBuffer& gbuffer, const gl::Buffer& lights, size_t lightCount, float clampDistance,

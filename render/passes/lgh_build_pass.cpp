@@ -56,7 +56,7 @@ LghBuildPass::LghBuildPass(bool floatAtomicsAvailable)
     scatterFloat_ = gl::Program::compute("lgh_scatter.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
     finalizeFloat_ = gl::Program::compute("lgh_finalize.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
   }
-  maxBlockBytes_ = std::max<size_t>(gl::maxStorageBlockBytes(), 1 << 24);
+  maxBlockBytes_ = std::max(gl::maxStorageBlockBytes(), gl::kMinStorageBlockBytes);
 }
 
 template <typename Fn>

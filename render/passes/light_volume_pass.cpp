@@ -50,13 +50,7 @@ LightVolumePass::LightVolumePass(bool floatAtomics) : floatAtomics_(floatAtomics
   GLint alignment = 256;
   glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
   uniformStride_ = (sizeof(gpu::LightPassUniforms) + size_t(alignment) - 1) / size_t(alignment) * size_t(alignment);
-  GLint ssboAlignment = 256;
-  glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &ssboAlignment);
-  // Chunks start at multiples of this many lights, so every chunk's byte offset is aligned.
-  const size_t lightsPerAlignment = std::max<size_t>(1, size_t(ssboAlignment) / sizeof(gpu::GpuLight));
-  maxBlockLights_ = std::max<size_t>(std::max<size_t>(gl::maxStorageBlockBytes(), 1 << 24) / sizeof(gpu::GpuLight) /
-                                         lightsPerAlignment * lightsPerAlignment,
-                                     lightsPerAlignment);
+  maxBlockLights_ = gl::storageBlockElements(sizeof(gpu::GpuLight));  // chunks of S0 start aligned
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
   emptyVertexArray_ = gl::VertexArrayHandle(vao);

@@ -18,7 +18,7 @@ ShadowTargetsPass::ShadowTargetsPass()
           "shadow_targets.comp", {{"SHADOW_TARGETS_RACE", "1"}, {"SHADOW_TARGETS_FROM_GRID_LIGHTS", "1"}})),
       resolveFromGridLights_(gl::Program::compute("shadow_targets.comp", {{"SHADOW_TARGETS_FROM_GRID_LIGHTS", "1"}})),
       gridParams_(sizeof(gpu::LghGridParams)) {
-  maxBlockBytes_ = std::max<size_t>(gl::maxStorageBlockBytes(), 1 << 24);
+  maxBlockBytes_ = std::max(gl::maxStorageBlockBytes(), gl::kMinStorageBlockBytes);
 }
 
 void ShadowTargetsPass::execute(const gl::Buffer& inputLights, size_t inputLightCount, const GpuHierarchy& hierarchy,
