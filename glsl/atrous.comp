@@ -3,14 +3,20 @@
 // estimator (Heitz et al. 2018): the shadowed (S = U D x raw ratio) and unshadowed (U D) luminances are
 // filtered with the same weights and divided at the end, so the ratio is averaged in proportion to
 // the light each neighbour receives (D: the raw ratio's own weight, its samples' mean weight, blue).
+// The same taps filter the irradiance alone (U), so that U D / U is the filtered mean weight: an estimate
+// of what the input lights add over what the LGH's grid lights add (docs/design.md §5, "Correcting the
+// irradiance"). With correctIrradiance the output is the ratio times it, S / U, so that the image
+// converges to the exact shadowed irradiance instead of the LGH's times the exact ratio; the ratio's
+// edge-stopping stays on S / (U D), which is in [0, 1], so a pixel's heavy weight is averaged, not kept.
 // With temporal accumulation the ratio holds N frames (alpha of the raw ratio): its noise falls as
 // 1/sqrt(N), and the ratio sigma shrinks as N^-sigmaFade and the pixel skips the floor(sigmaFade
 // log2 N) widest passes (at fade 1/2: one per 4x the frames, as the noise halves), so that the filter's
 // blur across shadow edges and contact shadows does not become the accumulated estimate's error floor:
 // the filter vanishes as N grows.
-//   stage 0: (raw ratio, irradiance) -> (S, U)
-//   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U)
-//   stage 2: (S, U) -> filtered ratio S / U; the raw ratio where no neighbour received light (U = 0)
+//   stage 0: (raw ratio, irradiance) -> (S, U D, U)
+//   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U D, U)
+//   stage 2: (S, U D, U) -> visibility factor (r): S / (U D), or S / U with correctIrradiance; the
+//            ratio S / (U D) (g) and the mean weight U D / U (b); the raw values where U D or U is 0
 #include "shared/bindings.h"
 #include "shared/color.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -18,18 +24,19 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/gbuffer.glsl"
 
 layout(binding = LGH_TEXTURE_FILTER_SIGNAL)
-    uniform sampler2D signalIn;  // stage 0: raw ratio (r), weight (b); 1, 2: (S, U) in r, g
+    uniform sampler2D signalIn;  // stage 0: raw ratio (r), weight (b), frames (a); 1, 2: (S, U D, U) in r, g, b
 layout(binding = LGH_TEXTURE_FILTER_SECOND) uniform sampler2D
-    irradiance;  // unshadowed irradiance (stage 0), raw ratio (stage 2)
+    irradiance;  // unshadowed irradiance (stage 0), raw ratio (stages 1, 2)
 layout(rgba32f, binding = LGH_IMAGE_FILTER_OUT) uniform writeonly image2D signalOut;
 uniform int stage;
 uniform int stepSize;
-uniform float normalPower;  // weight max(0, n.n')^normalPower
-uniform float planeSigma;   // tangent-plane distance, in pixel footprints x stepSize, at weight e^-1/2
-uniform float ratioSigma;   // ratio difference at weight e^-1/2 (from the second pass on: the first
-                            // pass sees raw ratios, with k = 1 only 0 or 1, which would stop every tap)
-uniform float sigmaFade;    // ratio sigma x N^-sigmaFade for a ratio accumulated over N frames
-uniform int passes;         // the filter's stage-1 passes (steps 1, 2, ..., 2^(passes - 1))
+uniform float normalPower;      // weight max(0, n.n')^normalPower
+uniform float planeSigma;       // tangent-plane distance, in pixel footprints x stepSize, at weight e^-1/2
+uniform float ratioSigma;       // ratio difference at weight e^-1/2 (from the second pass on: the first
+                                // pass sees raw ratios, with k = 1 only 0 or 1, which would stop every tap)
+uniform float sigmaFade;        // ratio sigma x N^-sigmaFade for a ratio accumulated over N frames
+uniform int passes;             // the filter's stage-1 passes (steps 1, 2, ..., 2^(passes - 1))
+uniform int correctIrradiance;  // output the ratio times the filtered mean weight (ShadowSettings)
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -37,18 +44,18 @@ void main() {
   if (any(greaterThanEqual(pixel, size))) return;
   if (stage == 0) {
     vec4 raw = texelFetch(signalIn, pixel, 0);
-    float u = max(luminance(texelFetch(irradiance, pixel, 0).rgb), 0.0) * max(raw.b, 0.0);
-    // alpha: frames accumulated (1 for a single frame), carried through the passes for the fade
-    imageStore(signalOut, pixel, vec4(u * raw.r, u, raw.r, max(raw.a, 1.0)));
+    float u = max(luminance(texelFetch(irradiance, pixel, 0).rgb), 0.0), weighted = u * max(raw.b, 0.0);
+    imageStore(signalOut, pixel, vec4(weighted * raw.r, weighted, u, 0.0));
     return;
   }
   vec4 centre = texelFetch(signalIn, pixel, 0);
+  vec4 raw = texelFetch(irradiance, pixel, 0);  // the raw ratio: r, mean weight b, frames a
   if (stage == 2) {
-    float raw = texelFetch(irradiance, pixel, 0).r;
-    // S <= U tap by tap (a ratio is at most 1), so S / U stays in [0, 1] however small U is; only
-    // U = 0 (denormals flushed) has no quotient.
-    float ratio = centre.g > 0.0 ? centre.r / centre.g : raw;
-    imageStore(signalOut, pixel, vec4(clamp(ratio, 0.0, 1.0), 0.0, 0.0, 1.0));
+    // S <= U D tap by tap (a ratio is at most 1), so S / (U D) stays in [0, 1] however small U D is; only
+    // U D = 0 (no light, or every sample weighed 0) has no quotient.
+    float ratio = clamp(centre.g > 0.0 ? centre.r / centre.g : raw.r, 0.0, 1.0);
+    float meanWeight = centre.b > 0.0 ? centre.g / centre.b : max(raw.b, 0.0);
+    imageStore(signalOut, pixel, vec4(correctIrradiance != 0 ? ratio * meanWeight : ratio, ratio, meanWeight, 1.0));
     return;
   }
   Surface s = loadSurface(pixel);
@@ -56,16 +63,17 @@ void main() {
     imageStore(signalOut, pixel, centre);
     return;
   }
-  int kept = passes - int(floor(sigmaFade * log2(max(centre.a, 1.0))));
+  float frames = max(raw.a, 1.0);  // accumulated (1 for a single frame)
+  int kept = passes - int(floor(sigmaFade * log2(frames)));
   if (stepSize >= (1 << clamp(kept, 0, 30))) {  // one of the widest passes, skipped at N frames
     imageStore(signalOut, pixel, centre);
     return;
   }
   const float kernel[3] = float[](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
   float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30) * float(stepSize);
-  float centreRatio = centre.g > 0.0 ? centre.r / centre.g : centre.b;
-  float sigma = ratioSigma * pow(centre.a, -sigmaFade);
-  vec2 sum = vec2(0.0);
+  float centreRatio = centre.g > 0.0 ? centre.r / centre.g : raw.r;
+  float sigma = ratioSigma * pow(frames, -sigmaFade);
+  vec3 sum = vec3(0.0);
   float weightSum = 0.0;
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
@@ -74,16 +82,16 @@ void main() {
       vec4 qPosition = texelFetch(gPosition, q, 0);
       if (qPosition.w == 0.0) continue;
       vec4 v = texelFetch(signalIn, q, 0);
-      float qRatio = v.g > 0.0 ? v.r / v.g : v.b;
+      float qRatio = v.g > 0.0 ? v.r / v.g : centreRatio;  // a tap without a ratio stops nothing
       float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
       float dr = stepSize > 1 ? (qRatio - centreRatio) / sigma : 0.0;
       float w = kernel[abs(dx)] * kernel[abs(dy)] *
                 pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) *
                 exp(-0.5 * (plane * plane + dr * dr));
-      sum += w * v.rg;
+      sum += w * v.rgb;
       weightSum += w;
     }
   }
-  // The centre tap has weight (3/8)^2 > 0, so weightSum > 0. b keeps the raw ratio for the guards.
-  imageStore(signalOut, pixel, vec4(sum / weightSum, centre.b, centre.a));
+  // The centre tap has weight (3/8)^2 > 0, so weightSum > 0.
+  imageStore(signalOut, pixel, vec4(sum / weightSum, 0.0));
 }

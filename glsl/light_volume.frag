@@ -5,11 +5,11 @@
 // Shades one grid light at the surface under this pixel: irradiance weighted by the light's blending
 // function (docs/design.md §4), added into the target. Albedo is applied at compositing, so interleaving and
 // filtering work on smooth irradiance, not on textured radiance.
-#include "shared/color.glsl"
 #include "shared/bindings.h"
+#include "shared/color.glsl"
 #include "shared/frame.glsl"
-#include "shared/light_pass_types.h"
 #include "shared/lgh_shading.glsl"
+#include "shared/light_pass_types.h"
 #ifdef LGH_SELECT_SHADOWS
 #include "shared/shadow_selection.glsl"
 #endif
@@ -47,13 +47,15 @@ void main() {
   float blend = blendWeight(uint(lightBlend.y), d, lightBlend.x);
   if (blend == 0.0) discard;
   vec3 n = texelFetch(surfaceNormal, pixel, 0).xyz;
-  vec3 e = lightContribution(lightPosition, lightIntensity, lightLobe.xyz, lightLobe.w, position.xyz, n,
-                             pass.clampDistance);
+  vec3 e =
+      lightContribution(lightPosition, lightIntensity, lightLobe.xyz, lightLobe.w, position.xyz, n, pass.clampDistance);
   irradiance = vec4(blend * e, 1.0);
 #ifdef LGH_SELECT_SHADOWS
   bool finest = uint(lightBlend.y) == kRoleFinest;
   if (!(finest && (pass.selectFlags & kSelectSkipFinest) != 0u)) {
-    float importance = luminance(irradiance.rgb);
+    bool gridLight = (lightId & kSlotS0) == 0u;
+    float importance = selectionImportance(irradiance.rgb, lightIntensity, blend, d, pass.clampDistance,
+                                           gridLight ? pass.defensive : 0.0);
     if ((pass.selectFlags & kSelectUniform) != 0u && importance > 0.0) importance = 1.0;
     uint pixelIndex = uint(pixel.y) * (pass.tilesPerAxis * pass.tileWidth) + uint(pixel.x);
     selectShadowSample(pixelIndex, lightId, importance, pass.shadowSamples, pass.frameSeed);

@@ -2,10 +2,17 @@
 // One shadow ray per selected light per pixel (docs/design.md §5): from the pixel's surface to the light,
 // any-hit through the scene BVH. A selected grid light is reached through one of its input lights,
 // drawn by its share of the grid light's importance (shadow_targets.comp), or, as in the paper,
-// through its centre jittered by the cluster's spread (when no targets were drawn). Writes the raw visibility ratio:
-// the mean of the k visibilities (importance selection, each sample already drawn in proportion to its contribution),
-// weighted by what the grid light's drawn lights add over what its centre adds (weighTargets), or the
-// contribution-weighted mean (uniform selection); and the samples' mean weight (blue).
+// through its centre jittered by the cluster's spread (when no targets were drawn).
+// The light pass drew each slot's light l with probability c'_l / F' (c'_l: its selection importance,
+// F': the pixel's total, shadowTotals). Sample j is weighed by w_j = t_l / c'_l, t_l what l adds here
+// unshadowed: for a grid light with drawn targets (weighTargets), what its input lights add, estimated
+// by the drawn lights' mean geometric factor; otherwise its own blended contribution. Then
+//   F' mean(w V) estimates the shadowed irradiance's luminance sum_i a_i G_i V_i, and
+//   F' mean(w)   the unshadowed one, sum_i a_i G_i, which the LGH's irradiance (luminance C) approximates.
+// Writes the raw visibility ratio r = sum w V / sum w (red), the rays traced (green) and the ratio's
+// weight D = F' mean(w) / C (blue): what the input lights add over what the LGH's lights add, by which
+// the filter and the accumulation weigh the ratio and by which the composite may correct the irradiance
+// (docs/design.md §5, "Weighing the samples" and "Correcting the irradiance").
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/bindings.h"
 #include "shared/bvh_traverse.glsl"
@@ -21,6 +28,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/sampling.glsl"
 
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight inputLights[]; };
+layout(std430, binding = LGH_BINDING_PASS1) readonly buffer ShadowTotals { float shadowTotals[]; };  // F'
+layout(binding = LGH_TEXTURE_SHADOW_IRRADIANCE) uniform sampler2D lightPassIrradiance;  // the slots' layout
 layout(std430, binding = LGH_BINDING_PASS2) readonly buffer ShadowSlots { uint shadowSlots[]; };
 layout(std430, binding = LGH_BINDING_PASS3) readonly buffer GridLights { GpuGridLight gridLights[]; };
 layout(std430, binding = LGH_BINDING_PASS4) readonly buffer Targets { uint clusterTargets[]; };
@@ -35,8 +44,10 @@ uniform int resampleTargets;  // pick among a grid light's drawn lights by their
 uniform int weighTargets;     // weigh each grid light's visibility by its drawn lights' G over its centre's
 uniform float spread;         // jitter scale: the jitter's standard deviation is spread x the cluster's
 uniform int uniformSelection;
+uniform int everyLevelSelected;  // 0 when the finest level is skipped: F' / C then compares unlike sums
+uniform float defensive;         // the light pass's defensive share (ShadowSettings::selectionDefensive)
 uniform float clampDistance;
-// For uniform selection's weights: the blending parameters of the light pass.
+// The blending parameters of the light pass, to recompute a selected light's importance.
 uniform float alpha;
 uniform float topCellSize;
 uniform uint firstLevel;
@@ -103,7 +114,7 @@ void main() {
   uvec2 p = uvec2(pixel);
   uvec2 tiled = (p % tilesPerAxis) * tileSize + p / tilesPerAxis;
   uint pixelIndex = tiled.y * (tilesPerAxis * tileSize.x) + tiled.x;
-  float visible = 0.0, weights = 0.0, rays = 0.0;
+  float visible = 0.0, weights = 0.0, rays = 0.0, meanWeight = 0.0;
   if (s.valid) {
     vec3 origin = offsetRayOrigin(s.position, s.normal);
     Rng rng = makeRng(pixelIndex, frameSeed ^ 0x5bd1e995u);
@@ -115,58 +126,62 @@ void main() {
       if (id == kNoLight) continue;
       ShadedLight light;
       vec3 target;
-      float weight = 1.0;
-      if ((id & kSlotS0) != 0u) {
+      bool gridLight = (id & kSlotS0) == 0u;
+      float drawnFactor = -1.0;  // < 0: no drawn targets (an S0 light, or a jittered centre)
+      if (!gridLight) {
         light = decodeInputLight(inputLights[id & ~kSlotS0]);
         target = light.position;
       } else {
         light = decodeGridLight(gridLights[id]);
-        float drawnFactor = 0.0;
         uint targetLight =
             races > 0u ? pickTarget(id, (firstRace + j) % races, s.position, s.normal, rng, drawnFactor) : kNoLight;
         if (targetLight != kNoLight) {
           target = inputLights[targetLight].position;
-          // The selection drew g in proportion to its centre's contribution c_g = blend a_g G_centre(x);
-          // what g's input lights add is blend a_g sum_i share_i G_i(x), estimated by drawnFactor.
-          // Weighing the sample by their quotient makes the k samples' weighted mean converge to the
-          // exact ratio sum_i a_i G_i V_i / sum_i a_i G_i instead of one weighted by the centres.
-          if (weighTargets != 0) {
-            float centre = geometricFactor(light, s.position, s.normal);
-            weight = centre > 0.0 ? drawnFactor / centre : 0.0;
-          }
         } else {
+          drawnFactor = -1.0;
           vec3 sigma = sqrt(max(gridLights[id].variance, vec3(0.0)));
           vec3 jitter = vec3(raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)));
           target = light.position + (spread / kRaisedCosineStd) * sigma * jitter;
         }
       }
-      vec3 lightPosition = light.position;
-      if (uniformSelection != 0) {
-        // Uniform selection: weight each visibility by the light's contribution here (times the
-        // correction above: the contribution of its input lights).
-        float R = levelRadius(alpha, topCellSize, light.level, levels);
-        uint role = bruteForce != 0 ? kRoleOnly : levelRole(light.level, firstLevel, levels);
-        vec3 e = blendWeight(role, distance(lightPosition, s.position), R) *
-                 lightContribution(lightPosition, light.intensity, light.meanNormal, light.omniFraction, s.position,
-                                   s.normal, clampDistance);
-        weight *= luminance(e);
-      }
+      // The light's selection importance c'_l, as the light pass computed it (light_volume.frag).
+      float d = distance(light.position, s.position);
+      float R = levelRadius(alpha, topCellSize, light.level, levels);
+      uint role = bruteForce != 0 ? kRoleOnly : levelRole(light.level, firstLevel, levels);
+      float blend = blendWeight(role, d, R);
+      vec3 e = blend * lightContribution(light.position, light.intensity, light.meanNormal, light.omniFraction,
+                                         s.position, s.normal, clampDistance);
+      float importance = selectionImportance(e, light.intensity, blend, d, clampDistance, gridLight ? defensive : 0.0);
+      if (uniformSelection != 0) importance = importance > 0.0 ? 1.0 : 0.0;
+      // What it adds here: the selection drew grid light g in proportion to c'_g, but what g's input
+      // lights add is blend a_g sum_i share_i G_i(x), estimated by drawnFactor. Weighing the sample by
+      // their quotient makes the weighted mean of the visibilities converge to the exact ratio
+      // sum_i a_i G_i V_i / sum_i a_i G_i instead of one weighted by the centres.
+      float added =
+          weighTargets != 0 && drawnFactor >= 0.0 ? blend * luminance(light.intensity) * drawnFactor : luminance(e);
+      float weight = importance > 0.0 ? added / importance : 0.0;
       weights += weight;
       // The sample adds nothing here (no drawn light reaches x): a ray would decide nothing.
       if (weight == 0.0) continue;
       vec3 toLight = target - origin;
-      float d = length(toLight);
+      float rayLength = length(toLight);
       // Stop short of the light by a relative margin: VPLs sit on surfaces, and so may a cluster's centre.
-      bool blocked = d > 0.0 && traceAnyHit(origin, toLight / d, 0.0, d * (1.0 - 1e-3));
+      bool blocked = rayLength > 0.0 && traceAnyHit(origin, toLight / rayLength, 0.0, rayLength * (1.0 - 1e-3));
       visible += weight * (blocked ? 0.0 : 1.0);
       rays += 1.0;
     }
   }
   // No selected light (nothing lights this pixel through the LGH): visibility 1 multiplies zero anyway.
   float ratio = weights > 0.0 ? visible / weights : 1.0;
-  // b: the estimate's own weight, the samples' mean weight (1 unless weighTargets), by which the filter
-  // and the accumulation weigh this pixel's ratio: a ratio of sums over pixels and frames converges
-  // where a mean of per-pixel ratios would keep each one's bias.
-  float meanWeight = weighTargets != 0 && uniformSelection == 0 && samples > 0u ? weights / float(samples) : 1.0;
+  // b: the estimate's own weight D = F' mean(w) / C, by which the filter and the accumulation weigh this
+  // pixel's ratio (a ratio of sums over pixels and frames converges where a mean of per-pixel ratios
+  // would keep each one's bias), and by which the composite may scale the LGH's irradiance. With the
+  // finest level skipped the samples cover only part of C: D is then the plain mean weight.
+  if (s.valid && samples > 0u) {
+    float selected = shadowTotals[pixelIndex];
+    float lgh = luminance(texelFetch(lightPassIrradiance, ivec2(tiled), 0).rgb);
+    meanWeight = weights / float(samples);
+    if (everyLevelSelected != 0) meanWeight = lgh > 0.0 ? meanWeight * selected / lgh : 0.0;
+  }
   imageStore(ratioOut, pixel, vec4(ratio, rays, meanWeight, 1.0));
 }

@@ -222,7 +222,7 @@ FrameStats Renderer::render(const CameraView& view) {
     if (shadowed())
       timed(passes::kShadowRays, [&] {
         shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, target.layout, inputLights_.lights, hierarchy_,
-                               shadowTargets_, options, rawRatio_);
+                               shadowTargets_, options, target.irradiance, rawRatio_);
       });
     // Temporal accumulation: this frame's raw irradiance and ratio added to the history reprojected from
     // the last frame; the accumulated estimates replace them for the filter and the composite.
@@ -235,7 +235,7 @@ FrameStats Renderer::render(const CameraView& view) {
     // where the ratio holds more frames).
     if (shadowed())
       timed(passes::kShadowFilter, [&] {
-        shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, visibility_,
+        shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, correctsIrradiance(), visibility_,
                                   accumulating() ? settings_.accumulation.filterFade : 0.0f);
       });
     stats.lights = lightStats(draws);

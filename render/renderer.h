@@ -112,6 +112,9 @@ class Renderer {
     return shadowed() && settings_.shadows.targets > 0 && !settings_.lightPass.bruteForce &&
            hierarchy_.gridLightCount > 0;
   }
+  // The composite scales the LGH's irradiance by the shadow samples' filtered weight D, which estimates
+  // what the input lights add over what the grid lights add only when the samples cover every level.
+  bool correctsIrradiance() const { return settings_.shadows.correctIrradiance && !settings_.shadows.skipFinest; }
   bool interleaved() const { return settings_.lightPass.interleave > 1; }
   bool accumulating() const { return settings_.indirect && settings_.accumulation.enabled; }
   // Restarts the history when the lights were rebuilt or the estimate's settings changed, and counts

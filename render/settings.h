@@ -56,9 +56,15 @@ struct ShadowSettings {
   bool skipFinest = false;  // true: the finest level blended (S1, or S0 from start level 0) is not picked (the paper)
   bool uniform = false;     // pick lights uniformly instead of by contribution (for comparison)
   int targets = 8;          // input lights drawn per grid light each frame as ray targets; 0: jittered centres
-  bool resampleTargets = true;  // each pixel picks among the drawn targets by what they add there
-  bool weighTargets = true;     // weigh a sample by what its drawn targets add over what the centre adds
-  float spread = 1.0f;          // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
+  bool resampleTargets = true;    // each pixel picks among the drawn targets by what they add there
+  bool weighTargets = true;       // weigh a sample by what its drawn targets add over what the centre adds
+  bool correctIrradiance = true;  // scale the indirect light by the samples' mean weight (weighTargets)
+  float defensive = 0.0f;         // a grid light's selection importance adds this x its cosine-free contribution
+  float spread = 1.0f;            // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
+
+  // The defensive share the light pass and the shadow pass use: only samples weighed by their drawn
+  // targets have heavy weights to bound (the paper's jittered centres are weighed by the centre alone).
+  float selectionDefensive() const { return targets > 0 && weighTargets ? defensive : 0.0f; }
 };
 
 // The a-trous filter over the shadow ratio (ShadowFilterPass).
@@ -168,6 +174,18 @@ void visitSettings(Settings& s, Visitor&& visit) {
         SettingInfo{"shadow-weigh-targets",
                     "weigh each shadow sample by what its grid light's drawn targets add at the pixel over what the "
                     "grid light's centre adds (the selection's weight), so the ratio converges to the exact one"});
+  visit(shadows.correctIrradiance,
+        SettingInfo{"shadow-correct-irradiance",
+                    "scale the shadowed indirect light by the weighed samples' filtered mean weight, an unbiased "
+                    "estimate of what the input lights add over what the grid lights add: the image converges to "
+                    "the exact shadowed irradiance instead of the LGH's irradiance times the exact ratio"});
+  visit(shadows.defensive,
+        SettingInfo{"shadow-defensive",
+                    "defensive selection: a grid light's importance for shadow samples adds this times what it would "
+                    "add without the cosines at the pixel and at the light, which bounds the weights of grid lights "
+                    "whose centre grazes or faces away from the pixel while their input lights do not "
+                    "(with shadow-weigh-targets and drawn targets)",
+                    0.0, 100.0});
   visit(shadows.spread, SettingInfo{"shadow-spread",
                                     "jitter of a cluster's shadow-ray target with shadow-targets=0, in its standard "
                                     "deviations",

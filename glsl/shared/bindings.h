@@ -38,6 +38,7 @@
 // Passes that also read the G-buffer take their own inputs from unit 4 on.
 #define LGH_TEXTURE_TILED_IRRADIANCE 4       // interleave resolve
 #define LGH_TEXTURE_TILED_FRAGMENT_COUNTS 5  // interleave resolve
+#define LGH_TEXTURE_SHADOW_IRRADIANCE 4      // shadow rays: the light pass's irradiance, in its layout
 #define LGH_TEXTURE_FILTER_SIGNAL 4          // a-trous: the signal being filtered
 #define LGH_TEXTURE_FILTER_SECOND 5          // a-trous: unshadowed irradiance, or the raw ratio
 #define LGH_TEXTURE_COMPOSITE_DIRECT 4

@@ -4,6 +4,7 @@
 #ifndef LGH_LGH_SHADING_GLSL
 #define LGH_LGH_SHADING_GLSL
 
+#include "shared/color.glsl"      // luminance()
 #include "shared/light_levels.h"  // roles (kRole*, levelRole) and R_l, shared with C++
 
 // Weight of a light of a level with the given role at distance d, R = alpha * h_level.
@@ -34,6 +35,19 @@ vec3 lightContribution(vec3 lightPos, vec3 intensity, vec3 meanNormal, float omn
   if (cosine == 0.0) return vec3(0.0);
   float distanceSq = max(max(d * d, clampDistance * clampDistance), kMinDistanceSq);
   return intensity * (cosine * emissionLobe(meanNormal, omniFraction, -w) / distanceSq);
+}
+
+// The shadow-sample selection's importance of a light at distance d whose blended contribution at x
+// is `contribution` (docs/design.md §5, "Defensive selection"): its luminance plus `defensive` x what
+// it would add without the cosines at x and at the light. A grid light stands for input lights spread
+// over its cell and beyond; where its centre grazes x or faces away, its own contribution is small or
+// zero while its lights' is not, so a sample weighed by their quotient would be heavy-tailed (or those
+// lights never sampled). The cosine-free term bounds the quotient (defensive importance sampling,
+// Hesterberg 1995).
+float selectionImportance(vec3 contribution, vec3 intensity, float blend, float d, float clampDistance,
+                          float defensive) {
+  float distanceSq = max(max(d * d, clampDistance * clampDistance), kMinDistanceSq);
+  return luminance(contribution) + defensive * blend * luminance(intensity) / distanceSq;
 }
 
 #endif

@@ -53,6 +53,9 @@ GPU_STRUCT(LightPassUniforms) {
   uint tileRotation;  // added to a light's index before dealing it to a tile: rotated per frame
                       // while accumulating, so n^2 frames give every pixel every light once
 
+  float defensive;  // a grid light's selection importance adds defensive x its cosine-free contribution
+  uint pad0, pad1, pad2;
+
   // levelOffsets[l / 4][l % 4]: index of level l's first light in the merged grid-light buffer
   // (S0: 0), for dealing each level's lights evenly to the tiles
   uvec4 levelOffsets[kMaxLightPassLevels / 4u];
@@ -61,8 +64,9 @@ GPU_CHECK_OFFSET(LightPassUniforms, firstLevel, 16);
 GPU_CHECK_OFFSET(LightPassUniforms, tilesPerAxis, 32);
 GPU_CHECK_OFFSET(LightPassUniforms, imageWidth, 48);
 GPU_CHECK_OFFSET(LightPassUniforms, shadowSamples, 64);
-GPU_CHECK_OFFSET(LightPassUniforms, levelOffsets, 80);
-GPU_CHECK_SIZE(LightPassUniforms, 144);
+GPU_CHECK_OFFSET(LightPassUniforms, defensive, 80);
+GPU_CHECK_OFFSET(LightPassUniforms, levelOffsets, 96);
+GPU_CHECK_SIZE(LightPassUniforms, 160);
 
 GPU_NAMESPACE_END
 #endif

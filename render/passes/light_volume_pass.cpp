@@ -170,6 +170,7 @@ void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHi
                     (options.shadows.uniform ? gpu::kSelectUniform : 0u);
     u.frameSeed = options.frameSeed;
     u.tileRotation = options.tileRotation % unsigned(n * n);
+    u.defensive = options.shadows.selectionDefensive();
     for (int l = 1; l <= L; ++l) u.levelOffsets[l / 4][l % 4] = unsigned(hierarchy.levels[size_t(l)].offset);
     std::memcpy(staging.data() + i * uniformStride_, &u, sizeof(u));
   }

@@ -12,11 +12,13 @@ ShadowRayPass::ShadowRayPass() : program_(gl::Program::compute("shadow_rays.comp
 void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const ShadowSlots& slots,
                             const TileLayout& layout, const gl::Buffer& inputLights, const GpuHierarchy& hierarchy,
                             const ShadowTargets& targets, const LightPassOptions& lightPass,
-                            gl::Texture2D& rawRatio) const {
+                            const gl::Texture2D& lightPassIrradiance, gl::Texture2D& rawRatio) const {
   scene.bindForCompute();
   gbuffer.bindForReading();
   inputLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  slots.totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   slots.slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  lightPassIrradiance.bindTexture(LGH_TEXTURE_SHADOW_IRRADIANCE);
   // A buffer must be bound even when there is no hierarchy (brute force): the input lights stand in.
   (hierarchy.gridLights ? hierarchy.gridLights : inputLights).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
   const bool drawnTargets = targets.races > 0 && targets.targets;
@@ -30,6 +32,8 @@ void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const
   program_.set("weighTargets", int(lightPass.shadows.weighTargets));
   program_.set("spread", lightPass.shadows.spread);
   program_.set("uniformSelection", int(lightPass.shadows.uniform));
+  program_.set("everyLevelSelected", int(!lightPass.shadows.skipFinest));
+  program_.set("defensive", lightPass.shadows.selectionDefensive());
   program_.set("clampDistance", lightPass.clampDistance);
   program_.set("alpha", lightPass.pass.alpha);
   program_.set("topCellSize", float(hierarchy.grid.topCellSize));
@@ -45,7 +49,8 @@ void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const
 ShadowFilterPass::ShadowFilterPass() : program_(gl::Program::compute("atrous.comp")) {}
 
 void ShadowFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& rawRatio, const gl::Texture2D& irradiance,
-                               const ShadowFilterSettings& options, gl::Texture2D& filteredRatio, float sigmaFade) {
+                               const ShadowFilterSettings& options, bool correctIrradiance,
+                               gl::Texture2D& filteredRatio, float sigmaFade) {
   if (ping_.width() != gbuffer.width || ping_.height() != gbuffer.height) {
     ping_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
     pong_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
@@ -56,6 +61,7 @@ void ShadowFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& rawR
   program_.set("ratioSigma", std::max(options.ratioSigma, 1e-6f));
   program_.set("sigmaFade", sigmaFade);
   program_.set("passes", options.passes);
+  program_.set("correctIrradiance", int(correctIrradiance));
   auto run = [&](int stage, const gl::Texture2D& in, const gl::Texture2D& second, gl::Texture2D& out, int step) {
     in.bindTexture(LGH_TEXTURE_FILTER_SIGNAL);
     second.bindTexture(LGH_TEXTURE_FILTER_SECOND);
@@ -69,7 +75,7 @@ void ShadowFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& rawR
   gl::Texture2D* in = &ping_;
   gl::Texture2D* out = &pong_;
   for (int i = 0; i < options.passes; ++i) {
-    run(1, *in, irradiance, *out, 1 << i);
+    run(1, *in, rawRatio, *out, 1 << i);
     std::swap(in, out);
   }
   run(2, *in, rawRatio, filteredRatio, 1);

@@ -1,8 +1,9 @@
 #pragma once
 // Indirect shadows (docs/design.md §5-§6), after the light pass has picked k lights per pixel:
-//   ShadowRayPass:    GBuffer, ShadowSlots, lights, ShadowTargets -> raw visibility ratio (RGBA32F: r ratio,
-//                     g rays)
-//   ShadowFilterPass: raw ratio, unshadowed irradiance, GBuffer -> filtered ratio (RGBA32F: r), by
+//   ShadowRayPass:    GBuffer, ShadowSlots, lights, ShadowTargets, the light pass's irradiance -> raw
+//                     visibility ratio (RGBA32F: r ratio, g rays, b the ratio's weight D)
+//   ShadowFilterPass: raw ratio, unshadowed irradiance, GBuffer -> visibility factor (RGBA32F: r; the ratio
+//                     times the filtered D when correcting the irradiance), by
 //                     an a-trous filter applied as a ratio estimator; a ratio accumulated over N frames
 //                     (N in the raw ratio's alpha) is filtered with its ratio sigma x N^-sigmaFade
 
@@ -24,7 +25,8 @@ class ShadowRayPass {
   // spread, frame seed).
   void execute(const SceneGpu& scene, const GBuffer& gbuffer, const ShadowSlots& slots, const TileLayout& layout,
                const gl::Buffer& inputLights, const GpuHierarchy& hierarchy, const ShadowTargets& targets,
-               const LightPassOptions& lightPass, gl::Texture2D& rawRatio) const;
+               const LightPassOptions& lightPass, const gl::Texture2D& lightPassIrradiance,
+               gl::Texture2D& rawRatio) const;
 
  private:
   gl::Program program_;
@@ -33,8 +35,10 @@ class ShadowRayPass {
 class ShadowFilterPass {
  public:
   ShadowFilterPass();
+  // correctIrradiance: r is the ratio times the filtered mean weight (ShadowSettings::correctIrradiance).
   void execute(const GBuffer& gbuffer, const gl::Texture2D& rawRatio, const gl::Texture2D& irradiance,
-               const ShadowFilterSettings& options, gl::Texture2D& filteredRatio, float sigmaFade = 0.0f);
+               const ShadowFilterSettings& options, bool correctIrradiance, gl::Texture2D& filteredRatio,
+               float sigmaFade = 0.0f);
 
  private:
   gl::Program program_;

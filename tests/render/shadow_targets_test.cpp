@@ -2,6 +2,7 @@
 // the input light drawn for a grid light follows its share of the grid light's importance (chi-square
 // against lgh::ClusterSources, gathered and scattered levels), and a pixel whose lights are half
 // behind a wall gets, averaged over frames, the exact share-weighted visibility of its selection.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/quaternion.hpp>
@@ -146,6 +147,9 @@ std::filesystem::path writeWallScene(const TempDir& dir, std::vector<glm::vec3>&
 // Input light i is visible from x when it is on x's side of the wall at x = wallX (taller than the lights).
 struct ExpectedRatios {
   double byShare, byContribution, weighted, exact;
+  // Unshadowed luminance: what the selectable grid lights' input lights add (blend a_g sum_i share_i G_i),
+  // and what all input lights add (sum_i a_i G_i).
+  double weightedTotal, exactTotal;
 };
 ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>& lights, const glm::dvec3& x,
                               const glm::dvec3& n, double wallX, const RenderSettings& settings, float clampDistance) {
@@ -173,7 +177,8 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
       const double f =
           blend * luminance(lightContribution(glm::dvec3(light.position), glm::dvec3(light.intensity),
                                               glm::dvec3(light.meanNormal), light.omniFraction, x, &n, clampDistance));
-      if (!(f > 0)) continue;
+      // Selectable: a positive importance (with the defensive share, any grid light blended here).
+      if (!(f > 0) && !(settings.shadows.selectionDefensive() > 0 && blend > 0)) continue;
       Sum shareSum, contributionSum;
       for (const LightShare& s : clusters.shares(level, cpuIndex[g])) {
         const Light& l = lights[s.light];
@@ -192,7 +197,7 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
     const double c = luminance(glm::dvec3(l.intensity)) * geometric(l);
     exact.visible += visibleFromX(l) ? c : 0.0, exact.total += c;
   }
-  return {byShare.ratio(), byContribution.ratio(), weighted.ratio(), exact.ratio()};
+  return {byShare.ratio(), byContribution.ratio(), weighted.ratio(), exact.ratio(), weighted.total, exact.total};
 }
 
 TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
@@ -211,23 +216,29 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
   // Drawn lights as they are: the importance-weighted visibility, exactly; resampled at the pixel: the
   // contribution-weighted visibility, in the limit of many drawn lights (16 here; a bias for finite m);
   // resampled and weighed: the visibility weighted by what each grid light's input lights add, exactly
-  // (a ratio of sums over the frames), which is the exact ratio but for the blending's approximation.
+  // (a ratio of sums over the frames), which is the exact ratio but for the blending's approximation;
+  // and then the mean weight D times the LGH's irradiance is what the input lights add (the irradiance
+  // correction), with the defensive selection too.
   enum class Target { byShare, byContribution, weighted };
   struct Mode {
     bool skipFinest;
     Target target;
+    float defensive = 0.0f;
   };
-  for (const Mode mode : {Mode{true, Target::byShare}, Mode{false, Target::byShare},
-                          Mode{false, Target::byContribution}, Mode{false, Target::weighted}}) {
+  for (const Mode mode :
+       {Mode{true, Target::byShare}, Mode{false, Target::byShare}, Mode{false, Target::byContribution},
+        Mode{false, Target::weighted}, Mode{false, Target::weighted, 0.5f}}) {
     const std::string label = std::string(mode.skipFinest ? "skip S1" : "with S1") +
                               (mode.target == Target::byContribution ? ", resampled"
                                : mode.target == Target::weighted     ? ", resampled and weighed"
-                                                                     : "");
+                                                                     : "") +
+                              (mode.defensive > 0 ? ", defensive" : "");
     SCOPED_TRACE(label);
     settings.shadows.skipFinest = mode.skipFinest;
     settings.shadows.resampleTargets = mode.target != Target::byShare;
     settings.shadows.weighTargets = mode.target == Target::weighted;
     settings.shadows.targets = 16;
+    settings.shadows.defensive = mode.defensive;
     Renderer renderer(gpuScene, settings);
     const CameraView view = makeCameraView(resolveCamera(scene, settings), 24, 24);
     renderer.render(view);
@@ -252,6 +263,7 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
                                                                      : expected.weighted;
     // The frames' ratios combined as the accumulation does: sum_f D_f r_f / sum_f D_f, D_f the frame's
     // weight (Aov::Ratio's blue, 1 unless weighed); its standard error by the delta method.
+    const double lghIrradiance = luminance(glm::dvec3(glm::vec3(renderer.readImage(Aov::Irradiance).pixels[pixel])));
     const int frames = 400;
     std::vector<glm::dvec2> samples;  // (D r, D) per frame
     for (int f = 0; f < frames; ++f) {
@@ -283,6 +295,19 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
     }
     if (mode.target == Target::weighted) {  // the blending's approximation is all that is left
       EXPECT_NEAR(mean, expected.exact, 4.0 * standardError + 0.02);
+      // The irradiance correction: D C estimates what the input lights add, where the LGH's irradiance
+      // C is off (a test that the pixel can tell them apart, then that D C converges to the sum).
+      double meanWeight = 0, squares = 0;
+      for (const glm::dvec2& v : samples) meanWeight += v.y / frames, squares += v.y * v.y / frames;
+      const double weightError = std::sqrt(std::max(squares - meanWeight * meanWeight, 0.0) / (frames - 1));
+      std::printf(
+          "  %s: LGH irradiance %.4f, x mean weight %.4f +- %.4f; what the input lights add %.4f "
+          "(through the blending), %.4f (exact)\n",
+          label.c_str(), lghIrradiance, lghIrradiance * meanWeight, lghIrradiance * weightError, expected.weightedTotal,
+          expected.exactTotal);
+      const double tolerance = lghIrradiance * 4.0 * weightError + 2e-3 * expected.weightedTotal;
+      EXPECT_GT(std::abs(lghIrradiance - expected.weightedTotal), tolerance);
+      EXPECT_NEAR(lghIrradiance * meanWeight, expected.weightedTotal, tolerance);
     }
   }
 }
