@@ -176,8 +176,12 @@ void main() {
   // b: the estimate's own weight D = F' mean(w) / C, by which the filter and the accumulation weigh this
   // pixel's ratio (a ratio of sums over pixels and frames converges where a mean of per-pixel ratios
   // would keep each one's bias), and by which the composite may scale the LGH's irradiance. With the
-  // finest level skipped the samples cover only part of C: D is then the plain mean weight.
-  if (s.valid && samples > 0u) {
+  // finest level skipped the samples cover only part of C: D is then the plain mean weight. Uniform
+  // selection, the paper's comparison of ratio estimators, keeps D = 1: its estimate of the sum,
+  // (number of lights) x mean(w), is too noisy to weigh or correct anything by.
+  if (uniformSelection != 0) {
+    meanWeight = 1.0;
+  } else if (s.valid && samples > 0u) {
     float selected = shadowTotals[pixelIndex];
     float lgh = luminance(texelFetch(lightPassIrradiance, ivec2(tiled), 0).rgb);
     meanWeight = weights / float(samples);
