@@ -58,7 +58,7 @@ struct ShadowSettings {
   int targets = 8;          // input lights drawn per grid light each frame as ray targets; 0: jittered centres
   bool resampleTargets = true;    // each pixel picks among the drawn targets by what they add there
   bool weighTargets = true;       // weigh a sample by what its drawn targets add over what the centre adds
-  bool correctIrradiance = true;  // scale the indirect light by the samples' mean weight (weighTargets)
+  bool correctIrradiance = false;  // scale the indirect light by the samples' mean weight (weighTargets)
   float defensive = 0.0f;         // a grid light's selection importance adds this x its cosine-free contribution
   float spread = 1.0f;            // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
 
