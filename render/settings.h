@@ -56,11 +56,11 @@ struct ShadowSettings {
   bool skipFinest = false;  // true: the finest level blended (S1, or S0 from start level 0) is not picked (the paper)
   bool uniform = false;     // pick lights uniformly instead of by contribution (for comparison)
   int targets = 8;          // input lights drawn per grid light each frame as ray targets; 0: jittered centres
-  bool resampleTargets = true;    // each pixel picks among the drawn targets by what they add there
-  bool weighTargets = true;       // weigh a sample by what its drawn targets add over what the centre adds
+  bool resampleTargets = true;     // each pixel picks among the drawn targets by what they add there
+  bool weighTargets = true;        // weigh a sample by what its drawn targets add over what the centre adds
   bool correctIrradiance = false;  // scale the indirect light by the samples' mean weight (weighTargets)
-  float defensive = 0.0f;         // a grid light's selection importance adds this x its cosine-free contribution
-  float spread = 1.0f;            // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
+  float defensive = 0.0f;          // a grid light's selection importance adds this x its cosine-free contribution
+  float spread = 1.0f;             // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
 
   // The defensive share the light pass and the shadow pass use: only samples weighed by their drawn
   // targets have heavy weights to bound (the paper's jittered centres are weighed by the centre alone).
