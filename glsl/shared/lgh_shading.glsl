@@ -46,8 +46,11 @@ vec3 lightContribution(vec3 lightPos, vec3 intensity, vec3 meanNormal, float omn
 // Hesterberg 1995).
 float selectionImportance(vec3 contribution, vec3 intensity, float blend, float d, float clampDistance,
                           float defensive) {
-  float distanceSq = max(max(d * d, clampDistance * clampDistance), kMinDistanceSq);
-  return luminance(contribution) + defensive * blend * luminance(intensity) / distanceSq;
+  float importance = luminance(contribution);
+  if (defensive > 0.0)  // off by default: the light pass's hot loop skips the term
+    importance +=
+        defensive * blend * luminance(intensity) / max(max(d * d, clampDistance * clampDistance), kMinDistanceSq);
+  return importance;
 }
 
 #endif
