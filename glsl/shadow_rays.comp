@@ -6,7 +6,11 @@
 // The light pass drew each slot's light l with probability c'_l / F' (c'_l: its selection importance,
 // F': the pixel's total, shadowTotals). Sample j is weighed by w_j = t_l / c'_l, t_l what l adds here
 // unshadowed: for a grid light with drawn targets (weighTargets), what its input lights add, estimated
-// by the drawn lights' mean geometric factor; otherwise its own blended contribution. Then
+// by the drawn lights' mean blended geometric factor; otherwise its own blended contribution. Each drawn
+// light is blended by its own distance to x (blendTargets): the levels' B_l sum to 1 at every distance,
+// so over all levels input light i counts a_i G_i(x) exactly; blended by its grid light's centre's
+// distance instead, a light near x can count at a fine level and again at a coarse one whose centre is
+// far, or at neither. Then
 //   F' mean(w V) estimates the shadowed irradiance's luminance sum_i a_i G_i V_i, and
 //   F' mean(w)   the unshadowed one, sum_i a_i G_i, which the LGH's irradiance (luminance C) approximates.
 // Writes the raw visibility ratio r = sum w V / sum w (red), the rays traced (green) and the ratio's
@@ -42,6 +46,7 @@ uniform uvec2 tileSize;
 uniform uint races;           // input lights drawn per grid light (ShadowTargets); 0: jittered centres
 uniform int resampleTargets;  // pick among a grid light's drawn lights by their geometric factor here
 uniform int weighTargets;     // weigh each grid light's visibility by its drawn lights' G over its centre's
+uniform int blendTargets;     // blend each drawn light by its own distance (else by its grid light's centre's)
 uniform float spread;         // jitter scale: the jitter's standard deviation is spread x the cluster's
 uniform int uniformSelection;
 uniform int everyLevelSelected;  // 0 when the finest level is skipped: F' / C then compares unlike sums
@@ -84,12 +89,21 @@ float geometricFactor(ShadedLight light, vec3 x, vec3 n) {
 // G_i(x) (weight target / source = w_i a_i G_i / (w_i a_i)) picks light i in proportion to what it
 // adds here as m grows (resampled importance sampling, Talbot et al. 2005), instead of in proportion
 // to its brightness wherever it is. Without resampling: race `race` as drawn.
-// drawnFactor: the estimate of sum_i (w_i a_i / W) G_i(x), g's lights' geometric factor at x (the mean
-// of the m drawn lights' G, resampled; the drawn light's own G, not resampled). Unbiased either way.
-uint pickTarget(uint gridLight, uint race, vec3 x, vec3 n, inout Rng rng, out float drawnFactor) {
+// drawnFactor: the estimate of sum_i (w_i a_i / W) B_l(|x - p_i|) G_i(x), g's lights' blended geometric
+// factor at x (the mean of the m drawn lights', resampled; the drawn light's own, not resampled; without
+// blendTargets, G_i alone). Unbiased either way.
+// What input light `light`, drawn for a grid light of role `role` and radius R, adds at x per unit of
+// its grid light's luminance share: its geometric factor, blended by its own distance (blendTargets).
+float drawnFactorOf(uint light, vec3 x, vec3 n, uint role, float R) {
+  ShadedLight l = decodeInputLight(inputLights[light]);
+  float g = geometricFactor(l, x, n);
+  return blendTargets != 0 && g > 0.0 ? g * blendWeight(role, distance(l.position, x), R) : g;
+}
+
+uint pickTarget(uint gridLight, uint race, vec3 x, vec3 n, uint role, float R, inout Rng rng, out float drawnFactor) {
   uint drawn = clusterTargets[gridLight * races + race];
   if (resampleTargets == 0) {
-    drawnFactor = drawn != kNoLight ? geometricFactor(decodeInputLight(inputLights[drawn]), x, n) : 0.0;
+    drawnFactor = drawn != kNoLight ? drawnFactorOf(drawn, x, n, role, R) : 0.0;
     return drawn;
   }
   float total = 0.0, count = 0.0;
@@ -98,7 +112,7 @@ uint pickTarget(uint gridLight, uint race, vec3 x, vec3 n, inout Rng rng, out fl
     uint candidate = clusterTargets[gridLight * races + r];
     if (candidate == kNoLight) continue;
     count += 1.0;
-    float g = geometricFactor(decodeInputLight(inputLights[candidate]), x, n);
+    float g = drawnFactorOf(candidate, x, n, role, R);
     if (!(g > 0.0)) continue;
     total += g;
     if (nextFloat(rng) * total < g) picked = candidate;
@@ -124,17 +138,16 @@ void main() {
     for (uint j = 0u; j < samples; ++j) {
       uint id = shadowSlots[pixelIndex * samples + j];
       if (id == kNoLight) continue;
-      ShadedLight light;
-      vec3 target;
       bool gridLight = (id & kSlotS0) == 0u;
+      ShadedLight light = gridLight ? decodeGridLight(gridLights[id]) : decodeInputLight(inputLights[id & ~kSlotS0]);
+      float R = levelRadius(alpha, topCellSize, light.level, levels);
+      uint role = bruteForce != 0 ? kRoleOnly : levelRole(light.level, firstLevel, levels);
+      vec3 target = light.position;
       float drawnFactor = -1.0;  // < 0: no drawn targets (an S0 light, or a jittered centre)
-      if (!gridLight) {
-        light = decodeInputLight(inputLights[id & ~kSlotS0]);
-        target = light.position;
-      } else {
-        light = decodeGridLight(gridLights[id]);
-        uint targetLight =
-            races > 0u ? pickTarget(id, (firstRace + j) % races, s.position, s.normal, rng, drawnFactor) : kNoLight;
+      if (gridLight) {
+        uint targetLight = races > 0u ? pickTarget(id, (firstRace + j) % races, s.position, s.normal, role, R, rng,
+                                                   drawnFactor)
+                                      : kNoLight;
         if (targetLight != kNoLight) {
           target = inputLights[targetLight].position;
         } else {
@@ -146,19 +159,19 @@ void main() {
       }
       // The light's selection importance c'_l, as the light pass computed it (light_volume.frag).
       float d = distance(light.position, s.position);
-      float R = levelRadius(alpha, topCellSize, light.level, levels);
-      uint role = bruteForce != 0 ? kRoleOnly : levelRole(light.level, firstLevel, levels);
       float blend = blendWeight(role, d, R);
       vec3 e = blend * lightContribution(light.position, light.intensity, light.meanNormal, light.omniFraction,
                                          s.position, s.normal, clampDistance);
       float importance = selectionImportance(e, light.intensity, blend, d, clampDistance, gridLight ? defensive : 0.0);
       if (uniformSelection != 0) importance = importance > 0.0 ? 1.0 : 0.0;
       // What it adds here: the selection drew grid light g in proportion to c'_g, but what g's input
-      // lights add is blend a_g sum_i share_i G_i(x), estimated by drawnFactor. Weighing the sample by
-      // their quotient makes the weighted mean of the visibilities converge to the exact ratio
-      // sum_i a_i G_i V_i / sum_i a_i G_i instead of one weighted by the centres.
-      float added =
-          weighTargets != 0 && drawnFactor >= 0.0 ? blend * luminance(light.intensity) * drawnFactor : luminance(e);
+      // lights add is a_g sum_i share_i B_l(|x - p_i|) G_i(x) (blend a_g sum_i share_i G_i(x) without
+      // blendTargets), estimated by drawnFactor. Weighing the sample by their quotient makes the weighted
+      // mean of the visibilities converge to the exact ratio sum_i a_i G_i V_i / sum_i a_i G_i instead of
+      // one weighted by the centres.
+      float added = weighTargets != 0 && drawnFactor >= 0.0
+                        ? (blendTargets != 0 ? 1.0 : blend) * luminance(light.intensity) * drawnFactor
+                        : luminance(e);
       float weight = importance > 0.0 ? added / importance : 0.0;
       weights += weight;
       // The sample adds nothing here (no drawn light reaches x): a ray would decide nothing.

@@ -58,6 +58,7 @@ struct ShadowSettings {
   int targets = 8;          // input lights drawn per grid light each frame as ray targets; 0: jittered centres
   bool resampleTargets = true;     // each pixel picks among the drawn targets by what they add there
   bool weighTargets = true;        // weigh a sample by what its drawn targets add over what the centre adds
+  bool blendTargets = true;        // blend each drawn target by its own distance, not its grid light's centre's
   bool correctIrradiance = false;  // scale the indirect light by the samples' mean weight (weighTargets)
   float defensive = 0.0f;          // a grid light's selection importance adds this x its cosine-free contribution
   float spread = 1.0f;             // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
@@ -174,6 +175,11 @@ void visitSettings(Settings& s, Visitor&& visit) {
         SettingInfo{"shadow-weigh-targets",
                     "weigh each shadow sample by what its grid light's drawn targets add at the pixel over what the "
                     "grid light's centre adds (the selection's weight), so the ratio converges to the exact one"});
+  visit(shadows.blendTargets,
+        SettingInfo{"shadow-blend-targets",
+                    "blend each drawn target by its own distance to the pixel (false: by its grid light's centre's): "
+                    "the levels' blending sums to 1 at every distance, so the weighed samples converge to the exact "
+                    "ratio instead of one in which lights near a level's fade count twice or not at all"});
   visit(shadows.correctIrradiance,
         SettingInfo{"shadow-correct-irradiance",
                     "scale the shadowed indirect light by the weighed samples' filtered mean weight, an unbiased "

@@ -30,6 +30,7 @@ void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const
   program_.set("races", drawnTargets ? targets.races : 0u);
   program_.set("resampleTargets", int(lightPass.shadows.resampleTargets));
   program_.set("weighTargets", int(lightPass.shadows.weighTargets));
+  program_.set("blendTargets", int(lightPass.shadows.blendTargets));
   program_.set("spread", lightPass.shadows.spread);
   program_.set("uniformSelection", int(lightPass.shadows.uniform));
   program_.set("everyLevelSelected", int(!lightPass.shadows.skipFinest));

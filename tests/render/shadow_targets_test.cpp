@@ -143,13 +143,17 @@ std::filesystem::path writeWallScene(const TempDir& dir, std::vector<glm::vec3>&
 //                   G_i(x) = lum(f_i(x)) / a_i (the limit of resampled targets: shadow_rays.comp, pickTarget);
 //   weighted:       sum_g c_g V_g / sum_g c_g with c_g = blend a_g sum_i share_i G_i(x), what g's input
 //                   lights add (samples weighed by drawn over centre contribution);
+//   blended:        the same with each input light blended by its own distance to x instead of its grid
+//                   light's centre's, c_g = a_g sum_i share_i B_l(|x - p_i|) G_i(x) (shadow-blend-targets):
+//                   since the levels' B_l sum to 1 at every distance, sum_g c_g = sum_i a_i G_i wherever
+//                   every grid light holding a light i with B_l > 0 is selectable;
 //   exact:          sum_i a_i G_i V_i / sum_i a_i G_i over the input lights (the reference's ratio).
 // Input light i is visible from x when it is on x's side of the wall at x = wallX (taller than the lights).
 struct ExpectedRatios {
-  double byShare, byContribution, weighted, exact;
-  // Unshadowed luminance: what the selectable grid lights' input lights add (blend a_g sum_i share_i G_i),
-  // and what all input lights add (sum_i a_i G_i).
-  double weightedTotal, exactTotal;
+  double byShare, byContribution, weighted, blended, exact;
+  // Unshadowed luminance: what the selectable grid lights' input lights add (blend a_g sum_i share_i G_i,
+  // and blended by their own distance), and what all input lights add (sum_i a_i G_i).
+  double weightedTotal, blendedTotal, exactTotal;
 };
 ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>& lights, const glm::dvec3& x,
                               const glm::dvec3& n, double wallX, const RenderSettings& settings, float clampDistance) {
@@ -165,39 +169,44 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
   struct Sum {
     double visible = 0, total = 0;
     double ratio() const { return visible / total; }
-  } byShare, byContribution, weighted, exact;
+  } byShare, byContribution, weighted, blended, exact;
   for (int level = std::max(first, 1) + (settings.shadows.skipFinest ? 1 : 0); level <= levels; ++level) {
     const std::vector<size_t> cpuIndex = cpuIndexOfGpuLights(gpu, cpu, level);
     const std::vector<gpu::GpuGridLight> gpuLevel = gpu.downloadLevel(level);
     for (size_t g = 0; g < gpuLevel.size(); ++g) {
       const gpu::GpuGridLight& light = gpuLevel[g];
       const double d = glm::distance(glm::dvec3(light.position), x);
-      const double blend =
-          blendWeight(levelRole(level, first, levels), d, gpu.grid.radius(level, settings.lightPass.alpha));
+      const LevelRole role = levelRole(level, first, levels);
+      const double radius = gpu.grid.radius(level, settings.lightPass.alpha);
+      const double blend = blendWeight(role, d, radius);
       const double f =
           blend * luminance(lightContribution(glm::dvec3(light.position), glm::dvec3(light.intensity),
                                               glm::dvec3(light.meanNormal), light.omniFraction, x, &n, clampDistance));
       // Selectable: a positive importance (with the defensive share, any grid light blended here).
       if (!(f > 0) && !(settings.shadows.selectionDefensive() > 0 && blend > 0)) continue;
-      Sum shareSum, contributionSum;
+      Sum shareSum, contributionSum, blendedSum;
       for (const LightShare& s : clusters.shares(level, cpuIndex[g])) {
         const Light& l = lights[s.light];
         const double v = visibleFromX(l) ? 1.0 : 0.0;
         shareSum.visible += s.share * v, shareSum.total += s.share;
         contributionSum.visible += s.share * geometric(l) * v, contributionSum.total += s.share * geometric(l);
+        const double own = blendWeight(role, glm::distance(glm::dvec3(l.position), x), radius) * geometric(l);
+        blendedSum.visible += s.share * own * v, blendedSum.total += s.share * own;
       }
       if (!(contributionSum.total > 0)) continue;
       byShare.visible += f * shareSum.ratio(), byShare.total += f;
       byContribution.visible += f * contributionSum.ratio(), byContribution.total += f;
       const double a = luminance(glm::dvec3(light.intensity));
       weighted.visible += blend * a * contributionSum.visible, weighted.total += blend * a * contributionSum.total;
+      blended.visible += a * blendedSum.visible, blended.total += a * blendedSum.total;
     }
   }
   for (const Light& l : lights) {
     const double c = luminance(glm::dvec3(l.intensity)) * geometric(l);
     exact.visible += visibleFromX(l) ? c : 0.0, exact.total += c;
   }
-  return {byShare.ratio(), byContribution.ratio(), weighted.ratio(), exact.ratio(), weighted.total, exact.total};
+  return {byShare.ratio(), byContribution.ratio(), weighted.ratio(), blended.ratio(),
+          exact.ratio(),   weighted.total,         blended.total,    exact.total};
 }
 
 TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
@@ -219,7 +228,8 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
   // (a ratio of sums over the frames), which is the exact ratio but for the blending's approximation;
   // and then the mean weight D times the LGH's irradiance is what the input lights add (the irradiance
   // correction), with the defensive selection too.
-  enum class Target { byShare, byContribution, weighted };
+  // Blended by each light's own distance: the same, but converging to the exact sum and ratio.
+  enum class Target { byShare, byContribution, weighted, blended };
   struct Mode {
     bool skipFinest;
     Target target;
@@ -227,16 +237,19 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
   };
   for (const Mode mode :
        {Mode{true, Target::byShare}, Mode{false, Target::byShare}, Mode{false, Target::byContribution},
-        Mode{false, Target::weighted}, Mode{false, Target::weighted, 0.5f}}) {
+        Mode{false, Target::weighted}, Mode{false, Target::weighted, 0.5f}, Mode{false, Target::blended}}) {
     const std::string label = std::string(mode.skipFinest ? "skip S1" : "with S1") +
                               (mode.target == Target::byContribution ? ", resampled"
                                : mode.target == Target::weighted     ? ", resampled and weighed"
+                               : mode.target == Target::blended      ? ", resampled, weighed and blended"
                                                                      : "") +
                               (mode.defensive > 0 ? ", defensive" : "");
     SCOPED_TRACE(label);
     settings.shadows.skipFinest = mode.skipFinest;
     settings.shadows.resampleTargets = mode.target != Target::byShare;
-    settings.shadows.weighTargets = mode.target == Target::weighted;
+    const bool weighed = mode.target == Target::weighted || mode.target == Target::blended;
+    settings.shadows.weighTargets = weighed;
+    settings.shadows.blendTargets = mode.target == Target::blended;
     settings.shadows.targets = 16;
     settings.shadows.defensive = mode.defensive;
     Renderer renderer(gpuScene, settings);
@@ -260,7 +273,8 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
                                                    -scene.origin.x, settings, renderer.clampDistance());
     const double converged = mode.target == Target::byShare          ? expected.byShare
                              : mode.target == Target::byContribution ? expected.byContribution
-                                                                     : expected.weighted;
+                             : mode.target == Target::weighted       ? expected.weighted
+                                                                     : expected.blended;
     // The frames' ratios combined as the accumulation does: sum_f D_f r_f / sum_f D_f, D_f the frame's
     // weight (Aov::Ratio's blue, 1 unless weighed); its standard error by the delta method.
     const double lghIrradiance = luminance(glm::dvec3(glm::vec3(renderer.readImage(Aov::Irradiance).pixels[pixel])));
@@ -271,7 +285,9 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
       // The raw texture (readImage shows the ratio as grey): r ratio, b weight; GL rows are bottom-up.
       const std::vector<glm::vec4> raw = renderer.texture(Aov::Ratio).readRGBA();
       const glm::vec4 r = raw[(position.height - 1 - pixel / position.width) * position.width + pixel % position.width];
-      if (f == 0) ASSERT_EQ(r.x, renderer.readImage(Aov::Ratio).pixels[pixel].x);
+      if (f == 0) {
+        ASSERT_EQ(r.x, renderer.readImage(Aov::Ratio).pixels[pixel].x);
+      }
       samples.push_back({double(r.z) * r.x, double(r.z)});
     }
     glm::dvec2 sum(0.0);
@@ -282,9 +298,9 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
     const double standardError = std::sqrt(residuals) / sum.y;
     std::printf(
         "  %s: ratio %.4f +- %.4f over %d frames; share-weighted visibility %.4f, contribution-weighted %.4f, "
-        "weighted by what the grid lights add %.4f, exact %.4f\n",
+        "weighted by what the grid lights add %.4f (blended by the lights' own distance %.4f), exact %.4f\n",
         label.c_str(), mean, standardError, frames, expected.byShare, expected.byContribution, expected.weighted,
-        expected.exact);
+        expected.blended, expected.exact);
     EXPECT_GT(converged, 0.1);  // partly hidden: the test can tell a dark bias from the right answer
     EXPECT_LT(converged, 0.9);
     if (mode.target != Target::byContribution) {
@@ -293,8 +309,8 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
       EXPECT_NEAR(mean, converged, 4.0 * standardError + 0.03);
       EXPECT_LT(std::abs(mean - expected.byContribution), std::abs(mean - expected.byShare));
     }
-    if (mode.target == Target::weighted) {  // the blending's approximation is all that is left
-      EXPECT_NEAR(mean, expected.exact, 4.0 * standardError + 0.02);
+    if (weighed) {  // the blending's approximation is all that is left, and blended by own distance, nothing
+      EXPECT_NEAR(mean, expected.exact, 4.0 * standardError + (mode.target == Target::blended ? 2e-3 : 0.02));
       // The irradiance correction: D C estimates what the input lights add, where the LGH's irradiance
       // C is off (a test that the pixel can tell them apart, then that D C converges to the sum).
       double meanWeight = 0, squares = 0;
@@ -302,12 +318,20 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
       const double weightError = std::sqrt(std::max(squares - meanWeight * meanWeight, 0.0) / (frames - 1));
       std::printf(
           "  %s: LGH irradiance %.4f, x mean weight %.4f +- %.4f; what the input lights add %.4f "
-          "(through the blending), %.4f (exact)\n",
+          "(through the blending), %.4f (blended by their own distance), %.4f (exact)\n",
           label.c_str(), lghIrradiance, lghIrradiance * meanWeight, lghIrradiance * weightError, expected.weightedTotal,
-          expected.exactTotal);
-      const double tolerance = lghIrradiance * 4.0 * weightError + 2e-3 * expected.weightedTotal;
-      EXPECT_GT(std::abs(lghIrradiance - expected.weightedTotal), tolerance);
-      EXPECT_NEAR(lghIrradiance * meanWeight, expected.weightedTotal, tolerance);
+          expected.blendedTotal, expected.exactTotal);
+      const bool blended = mode.target == Target::blended;
+      const double total = blended ? expected.blendedTotal : expected.weightedTotal;
+      const double tolerance = lghIrradiance * 4.0 * weightError + 2e-3 * total;
+      if (!blended) {  // blended, the weights are heavier (B_l at a fringe light over B_l at its centre)
+        EXPECT_GT(std::abs(lghIrradiance - total), tolerance);
+      }
+      EXPECT_NEAR(lghIrradiance * meanWeight, total, tolerance);
+      // Blended by their own distance, the input lights add what they add exactly, but for the grid
+      // lights that hold a light near x and are not selectable there (their centre outside the blend).
+      EXPECT_LT(std::abs(expected.blendedTotal - expected.exactTotal),
+                0.2 * std::abs(expected.weightedTotal - expected.exactTotal));
     }
   }
 }
