@@ -216,7 +216,7 @@ FrameStats Renderer::render(const CameraView& view) {
     if (drawsShadowTargets())
       timed(passes::kShadowTargets, [&] {
         shadowTargetsPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_,
-                                   unsigned(settings_.shadows.targets), options.frameSeed, shadowTargets_);
+                                   unsigned(settings_.shadows.drawnTargets()), options.frameSeed, shadowTargets_);
       });
     // Shadow rays to the picked lights: the raw visibility ratio.
     if (shadowed())

@@ -5,6 +5,7 @@
 // appears everywhere with the same name and limits. Limits that are the code's own come from its
 // constants (shared/*.h), not retyped numbers.
 
+#include <algorithm>
 #include <string>
 
 #include "shared/lgh_types.h"
@@ -55,13 +56,20 @@ struct ShadowSettings {
   int samples = 4;          // k shadow rays per pixel; 0: indirect light unshadowed
   bool skipFinest = false;  // true: the finest level blended (S1, or S0 from start level 0) is not picked (the paper)
   bool uniform = false;     // pick lights uniformly instead of by contribution (for comparison)
-  int targets = 8;          // input lights drawn per grid light each frame as ray targets; 0: jittered centres
+  int targets = 8;  // input lights drawn per grid light each frame as ray targets (at least k); 0: jittered centres
   bool resampleTargets = true;     // each pixel picks among the drawn targets by what they add there
   bool weighTargets = true;        // weigh a sample by what its drawn targets add over what the centre adds
   bool blendTargets = true;        // blend each drawn target by its own distance, not its grid light's centre's
   bool correctIrradiance = false;  // scale the indirect light by the samples' mean weight (weighTargets)
   float defensive = 0.0f;          // a grid light's selection importance adds this x its cosine-free contribution
   float spread = 1.0f;             // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
+
+  // Input lights drawn per grid light each frame: at least one per shadow sample, so that k samples of one
+  // grid light at a pixel choose among k or more lights and more samples keep lowering the error (m lights
+  // shared by every pixel of the frame would otherwise bound it), at most kMaxShadowTargets.
+  int drawnTargets() const {
+    return targets > 0 ? std::min(std::max(targets, samples), int(gpu::kMaxShadowTargets)) : 0;
+  }
 
   // The defensive share the light pass and the shadow pass use: only samples weighed by their drawn
   // targets have heavy weights to bound (the paper's jittered centres are weighed by the centre alone).
@@ -165,7 +173,8 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(shadows.targets,
         SettingInfo{"shadow-targets",
                     "input lights drawn per grid light each frame, by their share of its importance, as shadow-ray "
-                    "targets (0: the paper's target, the cluster's centre jittered by its spread)",
+                    "targets, at least shadow-samples of them (0: the paper's target, the cluster's centre jittered "
+                    "by its spread)",
                     0, gpu::kMaxShadowTargets});
   visit(shadows.resampleTargets,
         SettingInfo{"shadow-resample-targets",
