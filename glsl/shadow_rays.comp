@@ -83,15 +83,6 @@ float geometricFactor(ShadedLight light, vec3 x, vec3 n) {
          a;
 }
 
-// The input light a ray towards grid light g aims at. The m drawn lights follow the share of g's
-// importance, w_i a_i / W. What g adds at x is sum_i w_i f_i(x), f_i = a_i G_i(x) with G_i the
-// geometric factor (cosine, lobe, 1/d^2) of light i at x; so resampling the m drawn lights by
-// G_i(x) (weight target / source = w_i a_i G_i / (w_i a_i)) picks light i in proportion to what it
-// adds here as m grows (resampled importance sampling, Talbot et al. 2005), instead of in proportion
-// to its brightness wherever it is. Without resampling: race `race` as drawn.
-// drawnFactor: the estimate of sum_i (w_i a_i / W) B_l(|x - p_i|) G_i(x), g's lights' blended geometric
-// factor at x (the mean of the m drawn lights', resampled; the drawn light's own, not resampled; without
-// blendTargets, G_i alone). Unbiased either way.
 // What input light `light`, drawn for a grid light of role `role` and radius R, adds at x per unit of
 // its grid light's luminance share: its geometric factor, blended by its own distance (blendTargets).
 float drawnFactorOf(uint light, vec3 x, vec3 n, uint role, float R) {
@@ -100,6 +91,16 @@ float drawnFactorOf(uint light, vec3 x, vec3 n, uint role, float R) {
   return blendTargets != 0 && g > 0.0 ? g * blendWeight(role, distance(l.position, x), R) : g;
 }
 
+// The input light a ray towards grid light g aims at. The m drawn lights follow the share of g's
+// importance, w_i a_i / W. What g adds at x is sum_i w_i f_i(x), f_i = a_i G_i(x) with G_i the
+// geometric factor (cosine, lobe, 1/d^2) of light i at x; so resampling the m drawn lights by
+// G_i(x) (weight target / source = w_i a_i G_i / (w_i a_i)) picks light i in proportion to what it
+// adds here as m grows (resampled importance sampling, Talbot et al. 2005), instead of in proportion
+// to its brightness wherever it is (with blendTargets, by B_l(|x - p_i|) G_i(x), the blended factor).
+// Without resampling: race `race` as drawn.
+// drawnFactor: the estimate of sum_i (w_i a_i / W) B_l(|x - p_i|) G_i(x), g's lights' blended geometric
+// factor at x (the mean of the m drawn lights', resampled; the drawn light's own, not resampled; without
+// blendTargets, G_i alone). Unbiased either way.
 uint pickTarget(uint gridLight, uint race, vec3 x, vec3 n, uint role, float R, inout Rng rng, out float drawnFactor) {
   uint drawn = clusterTargets[gridLight * races + race];
   if (resampleTargets == 0) {
