@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # Error of the shadowed indirect light against k (1, 4, 16; one frame, filtered and raw) and against
-# accumulated still frames (1, 4, 16, 64 at k = 4, filtered), for four shadow modes (`lights`: input lights drawn
-# by share, resampled, weighed and blended by their own distance, the default; `centres`: the same blended by
-# their grid light's centre; `corrected`: the default with the irradiance corrected by the weights; `paper`:
-# the paper's jittered cluster centres with S1 not selected), on
+# accumulated still frames (1, 4, 16, 64 at k = 4, filtered), for five shadow modes (`lights`: input lights drawn
+# by share, resampled, weighed and blended by their own distance, the irradiance corrected by the weights as far
+# as the pixel's samples are trusted, the default; `uncorrected`: the same without the correction; `unshrunk`:
+# the correction trusted from the first sample (prior 0); `centres`: uncorrected, blended by their grid light's
+# centre; `paper`: the paper's jittered cluster centres with S1 not selected), on
 # sponza_sun@atrium and cornell_emissive at 10K and 100K VPLs, 320x180, alpha 2, S1; plus the
 # unshadowed error of 4x4 interleaving accumulated over 16 frames against 1x1. Writes the sweeps under
 # OUT (default build-convergence/) and the table bench/results/convergence.md (bench/convergence_table.py).
 # Usage: bench/convergence.sh [BUILD_DIR] [OUT]   (over an hour on 2 cores, most of it the 64-frame points at
 # 100K VPLs; the Embree references are cached in build-sweep/reference-cache). A part of it: MODES (default
-# "lights centres corrected paper"), SCENES (default "sponza_sun cornell_emissive"), VPLS (default "10000 100000"), PARTS
+# "lights uncorrected unshrunk centres paper"), SCENES (default "sponza_sun cornell_emissive"), VPLS (default "10000 100000"), PARTS
 # (default "k frames") and INTERLEAVE=0 (no interleaving rows); the table is made from whatever OUT holds.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -22,15 +23,16 @@ if [ ! -d "$scenes" ]; then
 fi
 common=(--alpha 2 --start-level 1 --repeats 1 --retries 0 --uniform-lights 16 --uniform-shadowed-lights 2
         --brute-force-limit 0 --images false --cache-dir "$here/build-sweep/reference-cache")
-declare -A modes=([lights]="" [centres]="--set shadow-blend-targets=false"
-                  [corrected]="--set shadow-correct-irradiance=true"
+declare -A modes=([lights]="" [uncorrected]="--set shadow-correct-irradiance=false"
+                  [unshrunk]="--set shadow-correction-prior=0"
+                  [centres]="--set shadow-blend-targets=false --set shadow-correct-irradiance=false"
                   [paper]="--set shadow-targets=0 --set shadow-skip-finest=true")
 declare -A paths=([sponza_sun]="sponza_sun/sponza_sun.gltf@atrium"
                   [cornell_emissive]="cornell_emissive/cornell_emissive.gltf")
 for name in ${SCENES:-sponza_sun cornell_emissive}; do
   scene="${paths[$name]}"
   for vpls in ${VPLS:-10000 100000}; do
-    for mode in ${MODES:-lights centres corrected paper}; do
+    for mode in ${MODES:-lights uncorrected unshrunk centres paper}; do
       dir="$out/${name}_${vpls}_${mode}"
       read -ra flags <<< "${modes[$mode]}"  # the mode's --set pairs, as separate arguments
       if [[ " ${PARTS:-k frames} " == *" k "* ]]; then

@@ -17,20 +17,23 @@ def main(out):
     cases = sorted({os.path.basename(d).rsplit("_", 1)[0] for d in glob.glob(os.path.join(out, "*_*_*"))})
     print("Relative RMSE of the shadowed indirect light (irradiance x visibility) against the Embree reference;")
     print("320x180, alpha 2, S1, 1x1. `lights`: rays to input lights drawn by share, resampled, weighed and blended by")
-    print("their own distance (default); `centres`: the same blended by their grid light's centre's distance")
-    print("(--shadow-blend-targets=false); `corrected`: the default with the irradiance corrected by the samples'")
-    print("weights (--shadow-correct-irradiance);")
+    print("their own distance, the irradiance corrected by the samples' weights as far as a pixel's N = k x frames")
+    print("samples are trusted, N / (N + 16) (default); `uncorrected`: the same without the correction")
+    print("(--shadow-correct-irradiance=false); `unshrunk`: the correction trusted from the first sample")
+    print("(--shadow-correction-prior=0); `centres`: uncorrected, blended by their grid light's centre's distance")
+    print("(--shadow-blend-targets=false);")
     print("`paper`: jittered cluster centres, S1 not selected. Unshadowed LGH error in brackets. Floor: the error of")
     print("the LGH irradiance times the reference's own visibility ratio (sweep column rmse_exact_ratio), what exact")
-    print("shadows would reach on the uncorrected irradiance: the `lights`, `centres` and `paper` rows cannot go below it, the")
-    print("`corrected` rows can. Beyond the floor: sqrt(e^2 - floor^2), the shadow estimate's own error, where e > floor.\n")
+    print("shadows would reach on the uncorrected irradiance: the `uncorrected`, `centres` and `paper` rows cannot go below")
+    print("it, the corrected ones (`lights`, `unshrunk`) can. Beyond the floor: sqrt(e^2 - floor^2), the shadow estimate's")
+    print("own error, where e > floor.\n")
     header = ("| scene, VPLs | targets | k=1 | k=4 | k=16 | k=4 raw | k=16 raw | 16/4 raw | floor | 16/4 raw beyond the floor "
               "| 4 frames | 16 frames | 64 frames | 64 frames / unshadowed |")
     print(header)
     print("|" + "---|" * (header.count("|") - 1))
     for case in cases:
         scene, vpls = case.rsplit("_", 1)
-        k_rows = {m: rows(p) for m in ("lights", "centres", "corrected", "paper")
+        k_rows = {m: rows(p) for m in ("lights", "uncorrected", "unshrunk", "centres", "paper")
                   if os.path.exists(p := os.path.join(out, f"{case}_{m}", "k", "sweep.csv"))}
         # The floor depends on the irradiance alone, the same in both modes: taken from whichever measured it.
         case_floors = [float(r["rmse_exact_ratio"]) for rs in k_rows.values() for r in rs if r.get("rmse_exact_ratio")]

@@ -37,6 +37,8 @@ uniform float ratioSigma;       // ratio difference at weight e^-1/2 (from the s
 uniform float sigmaFade;        // ratio sigma x N^-sigmaFade for a ratio accumulated over N frames
 uniform int passes;             // the filter's stage-1 passes (steps 1, 2, ..., 2^(passes - 1))
 uniform int correctIrradiance;  // output the ratio times the filtered mean weight (ShadowSettings)
+uniform float correctionSamples;  // k: the raw ratio's samples per frame
+uniform float correctionPrior;    // samples' worth of trust in the LGH's irradiance (D = 1)
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -55,7 +57,12 @@ void main() {
     // U D = 0 (no light, or every sample weighed 0) has no quotient.
     float ratio = clamp(centre.g > 0.0 ? centre.r / centre.g : raw.r, 0.0, 1.0);
     float meanWeight = centre.b > 0.0 ? centre.g / centre.b : max(raw.b, 0.0);
-    imageStore(signalOut, pixel, vec4(correctIrradiance != 0 ? ratio * meanWeight : ratio, ratio, meanWeight, 1.0));
+    // The correction trusts the mean weight in proportion to the samples behind it, N / (N + prior):
+    // shrinkage toward the LGH's irradiance (D = 1), whose error is smaller than a few samples' noise.
+    float samplesSeen = correctionSamples * max(raw.a, 1.0);
+    float trust = samplesSeen / max(samplesSeen + correctionPrior, 1e-30);
+    float correction = 1.0 + trust * (meanWeight - 1.0);
+    imageStore(signalOut, pixel, vec4(correctIrradiance != 0 ? ratio * correction : ratio, ratio, meanWeight, 1.0));
     return;
   }
   Surface s = loadSurface(pixel);

@@ -42,7 +42,9 @@ std::string estimateKey(RenderSettings settings) {
                                                  "filter-plane-sigma",
                                                  "filter-ratio-sigma",
                                                  "accumulate-max-frames",
-                                                 "accumulate-filter-fade"};
+                                                 "accumulate-filter-fade",
+                                                 "shadow-correct-irradiance",  // applied to the history's sums
+                                                 "shadow-correction-prior"};
   std::ostringstream key;
   key.precision(9);
   visitSettings(settings, [&](const auto& value, const SettingInfo& info) {
@@ -235,8 +237,8 @@ FrameStats Renderer::render(const CameraView& view) {
     // where the ratio holds more frames).
     if (shadowed())
       timed(passes::kShadowFilter, [&] {
-        shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, correctsIrradiance(), visibility_,
-                                  accumulating() ? settings_.accumulation.filterFade : 0.0f);
+        shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, irradianceCorrection(),
+                                  visibility_, accumulating() ? settings_.accumulation.filterFade : 0.0f);
       });
     stats.lights = lightStats(draws);
   }

@@ -113,8 +113,14 @@ class Renderer {
            hierarchy_.gridLightCount > 0;
   }
   // The composite scales the LGH's irradiance by the shadow samples' filtered weight D, which estimates
-  // what the input lights add over what the grid lights add only when the samples cover every level.
-  bool correctsIrradiance() const { return settings_.shadows.correctIrradiance && !settings_.shadows.skipFinest; }
+  // what the input lights add over what the grid lights add only when the samples cover every level (and
+  // the brute-force light pass's irradiance is already the input lights' own: D = 1).
+  bool correctsIrradiance() const {
+    return settings_.shadows.correctIrradiance && !settings_.shadows.skipFinest && !settings_.lightPass.bruteForce;
+  }
+  IrradianceCorrection irradianceCorrection() const {
+    return {correctsIrradiance(), float(settings_.shadows.samples), settings_.shadows.correctionPrior};
+  }
   bool interleaved() const { return settings_.lightPass.interleave > 1; }
   bool accumulating() const { return settings_.indirect && settings_.accumulation.enabled; }
   // Restarts the history when the lights were rebuilt or the estimate's settings changed, and counts

@@ -57,12 +57,13 @@ struct ShadowSettings {
   bool skipFinest = false;  // true: the finest level blended (S1, or S0 from start level 0) is not picked (the paper)
   bool uniform = false;     // pick lights uniformly instead of by contribution (for comparison)
   int targets = 8;  // input lights drawn per grid light each frame as ray targets (at least k); 0: jittered centres
-  bool resampleTargets = true;     // each pixel picks among the drawn targets by what they add there
-  bool weighTargets = true;        // weigh a sample by what its drawn targets add over what the centre adds
-  bool blendTargets = true;        // blend each drawn target by its own distance, not its grid light's centre's
-  bool correctIrradiance = false;  // scale the indirect light by the samples' mean weight (weighTargets)
-  float defensive = 0.0f;          // a grid light's selection importance adds this x its cosine-free contribution
-  float spread = 1.0f;             // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
+  bool resampleTargets = true;    // each pixel picks among the drawn targets by what they add there
+  bool weighTargets = true;       // weigh a sample by what its drawn targets add over what the centre adds
+  bool blendTargets = true;       // blend each drawn target by its own distance, not its grid light's centre's
+  bool correctIrradiance = true;  // scale the indirect light by the samples' mean weight (weighTargets), shrunk:
+  float correctionPrior = 16.0f;  // samples' worth of trust in the LGH's irradiance against the mean weight
+  float defensive = 0.0f;         // a grid light's selection importance adds this x its cosine-free contribution
+  float spread = 1.0f;            // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
 
   // Input lights drawn per grid light each frame: at least one per shadow sample, so that k samples of one
   // grid light at a pixel choose among k or more lights and more samples keep lowering the error (m lights
@@ -192,8 +193,15 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(shadows.correctIrradiance,
         SettingInfo{"shadow-correct-irradiance",
                     "scale the shadowed indirect light by the weighed samples' filtered mean weight, an unbiased "
-                    "estimate of what the input lights add over what the grid lights add: the image converges to "
-                    "the exact shadowed irradiance instead of the LGH's irradiance times the exact ratio"});
+                    "estimate of what the input lights add over what the grid lights add, shrunk toward 1 for few "
+                    "samples (shadow-correction-prior): the image converges to the exact shadowed irradiance "
+                    "instead of the LGH's irradiance times the exact ratio"});
+  visit(shadows.correctionPrior,
+        SettingInfo{"shadow-correction-prior",
+                    "with shadow-correct-irradiance, how many samples' worth the LGH's irradiance counts against the "
+                    "mean weight: a pixel whose ratio holds N = k x frames samples is scaled by 1 + N / (N + prior) "
+                    "x (mean weight - 1), so few samples keep the LGH's irradiance and many converge to the exact one",
+                    0.0, 1e6});
   visit(shadows.defensive,
         SettingInfo{"shadow-defensive",
                     "defensive selection: a grid light's importance for shadow samples adds this times what it would "

@@ -50,7 +50,7 @@ void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const
 ShadowFilterPass::ShadowFilterPass() : program_(gl::Program::compute("atrous.comp")) {}
 
 void ShadowFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& rawRatio, const gl::Texture2D& irradiance,
-                               const ShadowFilterSettings& options, bool correctIrradiance,
+                               const ShadowFilterSettings& options, const IrradianceCorrection& correction,
                                gl::Texture2D& filteredRatio, float sigmaFade) {
   if (ping_.width() != gbuffer.width || ping_.height() != gbuffer.height) {
     ping_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
@@ -62,7 +62,9 @@ void ShadowFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& rawR
   program_.set("ratioSigma", std::max(options.ratioSigma, 1e-6f));
   program_.set("sigmaFade", sigmaFade);
   program_.set("passes", options.passes);
-  program_.set("correctIrradiance", int(correctIrradiance));
+  program_.set("correctIrradiance", int(correction.enabled));
+  program_.set("correctionSamples", correction.samplesPerFrame);
+  program_.set("correctionPrior", correction.prior);
   auto run = [&](int stage, const gl::Texture2D& in, const gl::Texture2D& second, gl::Texture2D& out, int step) {
     in.bindTexture(LGH_TEXTURE_FILTER_SIGNAL);
     second.bindTexture(LGH_TEXTURE_FILTER_SECOND);

@@ -32,13 +32,22 @@ class ShadowRayPass {
   gl::Program program_;
 };
 
+// How the filter's output scales the LGH's irradiance by the shadow samples' mean weight D: by
+// 1 + N / (N + prior) (D - 1) at a pixel whose ratio holds N = samplesPerFrame x frames samples.
+struct IrradianceCorrection {
+  bool enabled = false;
+  float samplesPerFrame = 0.0f;  // k
+  float prior = 0.0f;            // samples' worth of trust in the LGH's irradiance
+};
+
 class ShadowFilterPass {
  public:
   ShadowFilterPass();
-  // correctIrradiance: r is the ratio times the filtered mean weight (ShadowSettings::correctIrradiance).
+  // With correction.enabled, r is the ratio times the filtered mean weight shrunk toward 1 by the pixel's
+  // samples (ShadowSettings::correctIrradiance, correctionPrior).
   void execute(const GBuffer& gbuffer, const gl::Texture2D& rawRatio, const gl::Texture2D& irradiance,
-               const ShadowFilterSettings& options, bool correctIrradiance, gl::Texture2D& filteredRatio,
-               float sigmaFade = 0.0f);
+               const ShadowFilterSettings& options, const IrradianceCorrection& correction,
+               gl::Texture2D& filteredRatio, float sigmaFade = 0.0f);
 
  private:
   gl::Program program_;

@@ -1,7 +1,7 @@
-// Temporal accumulation (AccumulationPass): still frames lower the shadowed error; n x n interleaving
-// with the per-frame rotation gives the 1 x 1 irradiance after n^2 frames; a moved camera keeps the
-// history of surfaces still in view and restarts the disoccluded ones; changed lights or settings
-// restart it.
+// Temporal accumulation (AccumulationPass): still frames lower the shadowed error, below the LGH's
+// floor with the irradiance corrected; n x n interleaving with the per-frame rotation gives the 1 x 1
+// irradiance after n^2 frames; a moved camera keeps the history of surfaces still in view and restarts
+// the disoccluded ones; changed lights or settings restart it.
 #include <cstdio>
 
 #include "gl_test_env.h"
@@ -36,6 +36,22 @@ class AccumulationTest : public GLTest {
     return n;
   }
 
+  // The exact shadowed irradiance at the renderer's surfaces: every input light, one shadow ray each.
+  ImageRGBA exactShadowed(const Renderer& renderer, const SceneGpu& gpu) const {
+    BruteForcePass bruteForce;
+    gl::Texture2D exact(settings.image.width, settings.image.height, GL_RGBA32F);
+    bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
+                       renderer.clampDistance(), exact, &gpu);
+    return fromGLRows(settings.image.width, settings.image.height, exact.readRGBA());
+  }
+  // The relative RMSE of the last frame's shadowed indirect irradiance (irradiance x visibility).
+  static double shadowedError(const Renderer& renderer, const ImageRGBA& exact) {
+    ImageRGBA shadowed = renderer.readImage(Aov::Irradiance);
+    const ImageRGBA ratio = renderer.readImage(Aov::Visibility);
+    for (size_t i = 0; i < shadowed.pixels.size(); ++i) shadowed.pixels[i] *= ratio.pixels[i].r;
+    return relativeRmse(shadowed, exact);
+  }
+
   Scene scene;
   RenderSettings settings;
 };
@@ -51,26 +67,19 @@ TEST_F(AccumulationTest, StillFramesLowerTheShadowedError) {
   settings.shadows.samples = 1;
   Renderer renderer(gpu, settings);
   renderer.render(view());
-  BruteForcePass bruteForce;
-  gl::Texture2D exactTexture(settings.image.width, settings.image.height, GL_RGBA32F);
-  bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
-                     renderer.clampDistance(), exactTexture, &gpu);
-  const ImageRGBA exact = fromGLRows(settings.image.width, settings.image.height, exactTexture.readRGBA());
+  const ImageRGBA exact = exactShadowed(renderer, gpu);
 
-  auto shadowedError = [&](int filterPasses, int frames) {
+  auto errorAfter = [&](int filterPasses, int frames) {
     settings.filter.passes = filterPasses;
     renderer.setSettings(settings);
     renderer.restartAccumulation();
     FrameStats stats;
     for (int f = 0; f < frames; ++f) stats = renderer.render(view());
     EXPECT_EQ(stats.accumulatedFrames, frames);
-    ImageRGBA shadowed = renderer.readImage(Aov::Irradiance);
-    const ImageRGBA ratio = renderer.readImage(Aov::Visibility);
-    for (size_t i = 0; i < shadowed.pixels.size(); ++i) shadowed.pixels[i] *= ratio.pixels[i].r;
-    return relativeRmse(shadowed, exact);
+    return shadowedError(renderer, exact);
   };
   for (int passes : {0, 5}) {
-    const double one = shadowedError(passes, 1), four = shadowedError(passes, 4), sixteen = shadowedError(passes, 16);
+    const double one = errorAfter(passes, 1), four = errorAfter(passes, 4), sixteen = errorAfter(passes, 16);
     std::printf("  %s: relative RMSE 1 frame %.4f, 4 frames %.4f, 16 frames %.4f\n", passes ? "filtered" : "raw", one,
                 four, sixteen);
     EXPECT_LT(four, one);
@@ -78,6 +87,42 @@ TEST_F(AccumulationTest, StillFramesLowerTheShadowedError) {
     // Independent frames: the raw error falls as 1/sqrt(N) (0.25 at 16); the filtered one less.
     EXPECT_LT(sixteen, (passes ? 0.8 : 0.6) * one);
   }
+}
+
+// The irradiance correction (ShadowSettings::correctIrradiance) against the exact shadowed irradiance:
+// accumulated over many frames it falls below the floor of the LGH's irradiance times the exact ratio,
+// which no frame count lowers; the prior keeps one frame of a single sample near the uncorrected
+// estimate, which the unshrunk correction (prior 0) is not.
+TEST_F(AccumulationTest, CorrectedIrradianceConvergesBeyondTheLghAndFewSamplesKeepIt) {
+  const SceneGpu gpu(scene);
+  settings.image.width = 64;  // brute force: kept small
+  settings.image.height = 36;
+  settings.inputLights.vpls = 1000;
+  settings.filter.passes = 0;
+  Renderer renderer(gpu, settings);
+  renderer.render(view());
+  const ImageRGBA exact = exactShadowed(renderer, gpu);
+
+  auto errorAfter = [&](int samples, bool correct, float prior, int frames) {
+    settings.shadows.samples = samples;
+    settings.shadows.correctIrradiance = correct;
+    settings.shadows.correctionPrior = prior;
+    renderer.setSettings(settings);
+    renderer.restartAccumulation();
+    for (int f = 0; f < frames; ++f) renderer.render(view());
+    return shadowedError(renderer, exact);
+  };
+  const float prior = ShadowSettings{}.correctionPrior;
+  const double floorLgh = errorAfter(4, false, prior, 64), corrected = errorAfter(4, true, prior, 64);
+  const double one = errorAfter(1, false, prior, 1), oneShrunk = errorAfter(1, true, prior, 1),
+               oneUnshrunk = errorAfter(1, true, 0.0f, 1);
+  std::printf(
+      "  64 frames, k = 4: uncorrected %.4f, corrected %.4f; one frame, k = 1: uncorrected %.4f, "
+      "corrected %.4f, prior 0 %.4f\n",
+      floorLgh, corrected, one, oneShrunk, oneUnshrunk);
+  EXPECT_LT(corrected, 0.9 * floorLgh) << "the correction lowers the LGH's floor";
+  EXPECT_LT(oneShrunk, 1.1 * one) << "one sample keeps (nearly) the LGH's irradiance";
+  EXPECT_LT(oneShrunk, oneUnshrunk) << "the prior shrinks a single sample's noise";
 }
 
 // 4 x 4 interleaving, the dealing rotated every frame: after 16 frames every pixel has summed every
@@ -165,6 +210,9 @@ TEST_F(AccumulationTest, ChangedLightsOrSettingsRestart) {
   settings.filter.ratioSigma *= 2.0f;
   renderer.setSettings(settings);
   EXPECT_EQ(renderer.render(view()).accumulatedFrames, 2) << "the filter runs on the history: no restart";
+  settings.shadows.correctionPrior *= 2.0f;
+  renderer.setSettings(settings);
+  EXPECT_EQ(renderer.render(view()).accumulatedFrames, 3) << "the correction scales the history's sums: no restart";
   settings.lightPass.alpha *= 2.0f;
   renderer.setSettings(settings);
   EXPECT_EQ(renderer.render(view()).accumulatedFrames, 1) << "another estimate: restart";
