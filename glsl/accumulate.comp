@@ -5,14 +5,16 @@
 // values to the history's sums:
 //   irradiance sum  rgb: sum of E_f (unresolved: with n x n interleaving the tile's n^2-scaled value)
 //                   a:   N, frames in the history
-//   ratio sum       r: sum of lum(E_f) D_f r_f, g: sum of lum(E_f) D_f, b: sum of r_f, a: sum of lum(E_f)
-//                   (D_f: the frame's ratio weight, the shadow samples' mean weight; 1 unweighted)
+//   ratio sum       r: sum of T_f r_f, g: sum of T_f, b: sum of r_f, a: sum of lum(E_f)
+//                   (T_f = lum(E_f) D_f: the frame's ratio weight, what its shadow samples estimate the
+//                   input lights add, D_f their mean weight; lum(E_f) unweighted)
 // Raw, not filtered, values are summed so that the sums converge to the exact estimate instead of to
 // a filtered one. Outputs, in place: the accumulated irradiance sum / N (with interleaving only once
 // N >= n^2, when the rotated dealing has given the pixel every light; before that the resolved
-// irradiance of this frame stays), and the accumulated ratio sum(lum E D r) / sum(lum E D) (a ratio
-// estimator, weighted as the a-trous filter weighs its taps) with the mean weight sum(lum E D) / sum(lum E)
-// in blue and N in alpha for the filter.
+// irradiance of this frame stays), and the accumulated ratio sum(T r) / sum(T) (a ratio estimator,
+// weighted as the a-trous filter weighs its taps) with the weight sum(T) / N in blue, so that over the
+// accumulated irradiance sum(lum E) / N it gives the mean weight sum(T) / sum(lum E), and N in alpha for
+// the filter.
 // With N = 1 the outputs are this frame's values bit for bit.
 // Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
 // irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, but
@@ -137,10 +139,10 @@ void main() {
   vec3 e =
       tilesPerAxis > 1u ? texelFetch(rawIrradiance, tiledCoord(pixel), 0).rgb : texelFetch(rawIrradiance, pixel, 0).rgb;
   vec4 rawRatio = imageLoad(ratio, pixel);
-  float r = shadowed != 0 ? rawRatio.r : 1.0, weight = shadowed != 0 ? rawRatio.b : 1.0;
   float l = max(luminance(e), 0.0);
+  float r = shadowed != 0 ? rawRatio.r : 1.0, weight = shadowed != 0 ? max(rawRatio.b, 0.0) : l;
   irradianceSum += vec4(e, 1.0);
-  ratioSum += vec4(l * weight * r, l * weight, r, l);
+  ratioSum += vec4(weight * r, weight, r, l);
   imageStore(irradianceSumOut, pixel, irradianceSum);
   imageStore(ratioSumOut, pixel, ratioSum);
   float frames = irradianceSum.a;
@@ -150,7 +152,6 @@ void main() {
     imageStore(irradiance, pixel, vec4(irradianceSum.rgb / frames, imageLoad(irradiance, pixel).a));
   if (shadowed != 0) {
     float accumulated = ratioSum.g > 0.0 ? ratioSum.r / ratioSum.g : ratioSum.b / frames;
-    float meanWeight = ratioSum.a > 0.0 ? ratioSum.g / ratioSum.a : weight;
-    imageStore(ratio, pixel, vec4(clamp(accumulated, 0.0, 1.0), rawRatio.g, meanWeight, frames));
+    imageStore(ratio, pixel, vec4(clamp(accumulated, 0.0, 1.0), rawRatio.g, ratioSum.g / frames, frames));
   }
 }

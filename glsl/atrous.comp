@@ -2,12 +2,15 @@
 // Edge-avoiding a-trous wavelet filter (Dammertz et al. 2010) of the shadow ratio, as a ratio
 // estimator (Heitz et al. 2018): the shadowed (S = U D x raw ratio) and unshadowed (U D) luminances are
 // filtered with the same weights and divided at the end, so the ratio is averaged in proportion to
-// the light each neighbour receives (D: the raw ratio's own weight, its samples' mean weight, blue).
-// The same taps filter the irradiance alone (U), so that U D / U is the filtered mean weight: an estimate
+// the light each neighbour receives (U D: the raw ratio's own weight, what its samples estimate the
+// input lights add, blue; shadow_rays.comp). The same taps filter the irradiance alone (U), so that
+// U D / U is the filtered mean weight, a ratio of sums (no pixel's U D is divided by its own U): an estimate
 // of what the input lights add over what the LGH's grid lights add (docs/design.md §5, "Correcting the
-// irradiance"). With correctIrradiance the output is the ratio times it, S / U, so that the image
-// converges to the exact shadowed irradiance instead of the LGH's times the exact ratio; the ratio's
-// edge-stopping stays on S / (U D), which is in [0, 1], so a pixel's heavy weight is averaged, not kept.
+// irradiance"). With correctIrradiance the output is the ratio times it, shrunk toward 1 as far as the
+// pixel's N = k x frames samples are not trusted (1 + N / (N + prior) (D - 1)), so that the image
+// converges to the exact shadowed irradiance instead of the LGH's times the exact ratio while few samples
+// keep the LGH's; the ratio's edge-stopping stays on S / (U D), which is in [0, 1], so a pixel's heavy
+// weight is averaged, not kept.
 // With temporal accumulation the ratio holds N frames (alpha of the raw ratio): its noise falls as
 // 1/sqrt(N), and the ratio sigma shrinks as N^-sigmaFade and the pixel skips the floor(sigmaFade
 // log2 N) widest passes (at fade 1/2: one per 4x the frames, as the noise halves), so that the filter's
@@ -15,8 +18,9 @@
 // the filter vanishes as N grows.
 //   stage 0: (raw ratio, irradiance) -> (S, U D, U)
 //   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U D, U)
-//   stage 2: (S, U D, U) -> visibility factor (r): S / (U D), or S / U with correctIrradiance; the
-//            ratio S / (U D) (g) and the mean weight U D / U (b); the raw values where U D or U is 0
+//   stage 2: (S, U D, U) -> visibility factor (r): S / (U D), times the shrunk correction with
+//            correctIrradiance; the ratio S / (U D) (g) and the mean weight U D / U (b); the raw values
+//            where U D or U is 0
 #include "shared/bindings.h"
 #include "shared/color.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -24,7 +28,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/gbuffer.glsl"
 
 layout(binding = LGH_TEXTURE_FILTER_SIGNAL)
-    uniform sampler2D signalIn;  // stage 0: raw ratio (r), weight (b), frames (a); 1, 2: (S, U D, U) in r, g, b
+    uniform sampler2D signalIn;  // stage 0: raw ratio (r), weight U D (b), frames (a); 1, 2: (S, U D, U) in r, g, b
 layout(binding = LGH_TEXTURE_FILTER_SECOND) uniform sampler2D
     irradiance;  // unshadowed irradiance (stage 0), raw ratio (stages 1, 2)
 layout(rgba32f, binding = LGH_IMAGE_FILTER_OUT) uniform writeonly image2D signalOut;
@@ -46,17 +50,17 @@ void main() {
   if (any(greaterThanEqual(pixel, size))) return;
   if (stage == 0) {
     vec4 raw = texelFetch(signalIn, pixel, 0);
-    float u = max(luminance(texelFetch(irradiance, pixel, 0).rgb), 0.0), weighted = u * max(raw.b, 0.0);
+    float u = max(luminance(texelFetch(irradiance, pixel, 0).rgb), 0.0), weighted = max(raw.b, 0.0);  // U, U D
     imageStore(signalOut, pixel, vec4(weighted * raw.r, weighted, u, 0.0));
     return;
   }
   vec4 centre = texelFetch(signalIn, pixel, 0);
-  vec4 raw = texelFetch(irradiance, pixel, 0);  // the raw ratio: r, mean weight b, frames a
+  vec4 raw = texelFetch(irradiance, pixel, 0);  // the raw ratio: r, weight U D b, frames a
   if (stage == 2) {
     // S <= U D tap by tap (a ratio is at most 1), so S / (U D) stays in [0, 1] however small U D is; only
     // U D = 0 (no light, or every sample weighed 0) has no quotient.
     float ratio = clamp(centre.g > 0.0 ? centre.r / centre.g : raw.r, 0.0, 1.0);
-    float meanWeight = centre.b > 0.0 ? centre.g / centre.b : max(raw.b, 0.0);
+    float meanWeight = centre.b > 0.0 ? centre.g / centre.b : 1.0;  // U = 0: nothing to correct
     // The correction trusts the mean weight in proportion to the samples behind it, N / (N + prior):
     // shrinkage toward the LGH's irradiance (D = 1), whose error is smaller than a few samples' noise.
     float samplesSeen = correctionSamples * max(raw.a, 1.0);

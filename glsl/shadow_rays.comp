@@ -14,9 +14,11 @@
 //   F' mean(w V) estimates the shadowed irradiance's luminance sum_i a_i G_i V_i, and
 //   F' mean(w)   the unshadowed one, sum_i a_i G_i, which the LGH's irradiance (luminance C) approximates.
 // Writes the raw visibility ratio r = sum w V / sum w (red), the rays traced (green) and the ratio's
-// weight D = F' mean(w) / C (blue): what the input lights add over what the LGH's lights add, by which
-// the filter and the accumulation weigh the ratio and by which the composite may correct the irradiance
-// (docs/design.md §5, "Weighing the samples" and "Correcting the irradiance").
+// weight T = F' mean(w) (blue): the samples' estimate of what the input lights add here, on the scale of
+// the light pass's irradiance, by which the filter and the accumulation weigh the ratio; their sums of T
+// over sums of the irradiance C estimate D, what the input lights add over what the LGH's lights add, by
+// which the irradiance is corrected (docs/design.md §5, "Weighing the samples" and "Correcting the
+// irradiance"). Only sums are divided: with interleaving one tile's C can be all but 0 where T is not.
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/bindings.h"
 #include "shared/bvh_traverse.glsl"
@@ -129,7 +131,7 @@ void main() {
   uvec2 p = uvec2(pixel);
   uvec2 tiled = (p % tilesPerAxis) * tileSize + p / tilesPerAxis;
   uint pixelIndex = tiled.y * (tilesPerAxis * tileSize.x) + tiled.x;
-  float visible = 0.0, weights = 0.0, rays = 0.0, meanWeight = 0.0;
+  float visible = 0.0, weights = 0.0, rays = 0.0, estimate = 0.0;
   if (s.valid) {
     vec3 origin = offsetRayOrigin(s.position, s.normal);
     Rng rng = makeRng(pixelIndex, frameSeed ^ 0x5bd1e995u);
@@ -187,19 +189,18 @@ void main() {
   }
   // No selected light (nothing lights this pixel through the LGH): visibility 1 multiplies zero anyway.
   float ratio = weights > 0.0 ? visible / weights : 1.0;
-  // b: the estimate's own weight D = F' mean(w) / C, by which the filter and the accumulation weigh this
-  // pixel's ratio (a ratio of sums over pixels and frames converges where a mean of per-pixel ratios
-  // would keep each one's bias), and by which the composite may scale the LGH's irradiance. With the
-  // finest level skipped the samples cover only part of C: D is then the plain mean weight. Uniform
-  // selection, the paper's comparison of ratio estimators, keeps D = 1: its estimate of the sum,
-  // (number of lights) x mean(w), is too noisy to weigh or correct anything by.
+  // b: the estimate's own weight T = F' mean(w), D = T / C times the LGH's irradiance C, by which the filter
+  // and the accumulation weigh this pixel's ratio (a ratio of sums over pixels and frames converges where
+  // a mean of per-pixel ratios would keep each one's bias), and whose sums over sums of C may correct the
+  // LGH's irradiance. With the finest level skipped the samples cover only part of C: D is then the plain
+  // mean weight. Uniform selection, the paper's comparison of ratio estimators, keeps D = 1: its estimate
+  // of the sum, (number of lights) x mean(w), is too noisy to weigh or correct anything by.
+  float lgh = luminance(texelFetch(lightPassIrradiance, ivec2(tiled), 0).rgb);
   if (uniformSelection != 0) {
-    meanWeight = 1.0;
+    estimate = lgh;
   } else if (s.valid && samples > 0u) {
-    float selected = shadowTotals[pixelIndex];
-    float lgh = luminance(texelFetch(lightPassIrradiance, ivec2(tiled), 0).rgb);
-    meanWeight = weights / float(samples);
-    if (everyLevelSelected != 0) meanWeight = lgh > 0.0 ? meanWeight * selected / lgh : 0.0;
+    float meanWeight = weights / float(samples);
+    estimate = everyLevelSelected != 0 ? shadowTotals[pixelIndex] * meanWeight : lgh * meanWeight;
   }
-  imageStore(ratioOut, pixel, vec4(ratio, rays, meanWeight, 1.0));
+  imageStore(ratioOut, pixel, vec4(ratio, rays, estimate, 1.0));
 }

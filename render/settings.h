@@ -201,7 +201,7 @@ void visitSettings(Settings& s, Visitor&& visit) {
                     "with shadow-correct-irradiance, how many samples' worth the LGH's irradiance counts against the "
                     "mean weight: a pixel whose ratio holds N = k x frames samples is scaled by 1 + N / (N + prior) "
                     "x (mean weight - 1), so few samples keep the LGH's irradiance and many converge to the exact one",
-                    0.0, 1e6});
+                    0.0, 1e4});
   visit(shadows.defensive,
         SettingInfo{"shadow-defensive",
                     "defensive selection: a grid light's importance for shadow samples adds this times what it would "

@@ -276,19 +276,21 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
                              : mode.target == Target::weighted       ? expected.weighted
                                                                      : expected.blended;
     // The frames' ratios combined as the accumulation does: sum_f D_f r_f / sum_f D_f, D_f the frame's
-    // weight (Aov::Ratio's blue, 1 unless weighed); its standard error by the delta method.
+    // mean weight (Aov::Ratio's blue is C D_f, C the LGH's irradiance; D_f = 1 unless weighed); its
+    // standard error by the delta method.
     const double lghIrradiance = luminance(glm::dvec3(glm::vec3(renderer.readImage(Aov::Irradiance).pixels[pixel])));
     const int frames = 400;
     std::vector<glm::dvec2> samples;  // (D r, D) per frame
     for (int f = 0; f < frames; ++f) {
       if (f > 0) renderer.render(view);
-      // The raw texture (readImage shows the ratio as grey): r ratio, b weight; GL rows are bottom-up.
+      // The raw texture (readImage shows the ratio as grey): r ratio, b weight C D; GL rows are bottom-up.
       const std::vector<glm::vec4> raw = renderer.texture(Aov::Ratio).readRGBA();
       const glm::vec4 r = raw[(position.height - 1 - pixel / position.width) * position.width + pixel % position.width];
       if (f == 0) {
         ASSERT_EQ(r.x, renderer.readImage(Aov::Ratio).pixels[pixel].x);
       }
-      samples.push_back({double(r.z) * r.x, double(r.z)});
+      const double meanWeight = double(r.z) / lghIrradiance;
+      samples.push_back({meanWeight * r.x, meanWeight});
     }
     glm::dvec2 sum(0.0);
     for (const glm::dvec2& v : samples) sum += v;
