@@ -19,8 +19,8 @@
 //   stage 0: (raw ratio, irradiance) -> (S, U D, U)
 //   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U D, U)
 //   stage 2: (S, U D, U) -> visibility factor (r): S / (U D), times the shrunk correction with
-//            correctIrradiance; the ratio S / (U D) (g) and the mean weight U D / U (b); the raw values
-//            where U D or U is 0
+//            correctIrradiance; the ratio S / (U D) (g) and the mean weight U D / U (b); the raw ratio
+//            where U D is 0, mean weight 1 where U is 0
 #include "shared/bindings.h"
 #include "shared/color.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;

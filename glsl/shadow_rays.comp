@@ -189,7 +189,7 @@ void main() {
   }
   // No selected light (nothing lights this pixel through the LGH): visibility 1 multiplies zero anyway.
   float ratio = weights > 0.0 ? visible / weights : 1.0;
-  // b: the estimate's own weight T = F' mean(w), D = T / C times the LGH's irradiance C, by which the filter
+  // b: the estimate's own weight T = F' mean(w) = C D (C: the LGH's irradiance here), by which the filter
   // and the accumulation weigh this pixel's ratio (a ratio of sums over pixels and frames converges where
   // a mean of per-pixel ratios would keep each one's bias), and whose sums over sums of C may correct the
   // LGH's irradiance. With the finest level skipped the samples cover only part of C: D is then the plain

@@ -112,14 +112,13 @@ class Renderer {
     return shadowed() && settings_.shadows.targets > 0 && !settings_.lightPass.bruteForce &&
            hierarchy_.gridLightCount > 0;
   }
-  // The composite scales the LGH's irradiance by the shadow samples' filtered weight D, which estimates
+  // The filter scales the LGH's irradiance by the shadow samples' filtered weight D, which estimates
   // what the input lights add over what the grid lights add only when the samples cover every level (and
   // the brute-force light pass's irradiance is already the input lights' own: D = 1).
-  bool correctsIrradiance() const {
-    return settings_.shadows.correctIrradiance && !settings_.shadows.skipFinest && !settings_.lightPass.bruteForce;
-  }
   IrradianceCorrection irradianceCorrection() const {
-    return {correctsIrradiance(), float(settings_.shadows.samples), settings_.shadows.correctionPrior};
+    const ShadowSettings& shadows = settings_.shadows;
+    const bool enabled = shadows.correctIrradiance && !shadows.skipFinest && !settings_.lightPass.bruteForce;
+    return {enabled, float(shadows.samples), shadows.correctionPrior};
   }
   bool interleaved() const { return settings_.lightPass.interleave > 1; }
   bool accumulating() const { return settings_.indirect && settings_.accumulation.enabled; }
