@@ -5,16 +5,17 @@
 // values to the history's sums:
 //   irradiance sum  rgb: sum of E_f (unresolved: with n x n interleaving the tile's n^2-scaled value)
 //                   a:   N, frames in the history
-//   ratio sum       r: sum of T_f r_f, g: sum of T_f, b: sum of r_f, a: sum of lum(E_f)
+//   ratio sum       r: sum of T_f r_f, g: sum of T_f, b: sum of var(T_f), a: sum of lum(E_f)
 //                   (T_f = lum(E_f) D_f: the frame's ratio weight, what its shadow samples estimate the
-//                   input lights add, D_f their mean weight; lum(E_f) unweighted)
+//                   input lights add, D_f their mean weight; var(T_f) its variance, the frames independent;
+//                   lum(E_f) unweighted)
 // Raw, not filtered, values are summed so that the sums converge to the exact estimate instead of to
 // a filtered one. Outputs, in place: the accumulated irradiance sum / N (with interleaving only once
 // N >= n^2, when the rotated dealing has given the pixel every light; before that the resolved
 // irradiance of this frame stays), and the accumulated ratio sum(T r) / sum(T) (a ratio estimator,
 // weighted as the a-trous filter weighs its taps) with the weight sum(T) / N in blue, so that over the
-// accumulated irradiance sum(lum E) / N it gives the mean weight sum(T) / sum(lum E), and N in alpha for
-// the filter.
+// accumulated irradiance sum(lum E) / N it gives the mean weight sum(T) / sum(lum E), that weight's
+// variance sum(var T) / N^2 in green, and N in alpha for the filter.
 // With N = 1 the outputs are this frame's values bit for bit.
 // Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
 // irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, but
@@ -141,8 +142,9 @@ void main() {
   vec4 rawRatio = imageLoad(ratio, pixel);
   float l = max(luminance(e), 0.0);
   float r = shadowed != 0 ? rawRatio.r : 1.0, weight = shadowed != 0 ? max(rawRatio.b, 0.0) : l;
+  float variance = shadowed != 0 ? max(rawRatio.g, 0.0) : 0.0;
   irradianceSum += vec4(e, 1.0);
-  ratioSum += vec4(weight * r, weight, r, l);
+  ratioSum += vec4(weight * r, weight, variance, l);
   imageStore(irradianceSumOut, pixel, irradianceSum);
   imageStore(ratioSumOut, pixel, ratioSum);
   float frames = irradianceSum.a;
@@ -151,7 +153,9 @@ void main() {
   if (frames >= float(tilesPerAxis * tilesPerAxis))
     imageStore(irradiance, pixel, vec4(irradianceSum.rgb / frames, imageLoad(irradiance, pixel).a));
   if (shadowed != 0) {
-    float accumulated = ratioSum.g > 0.0 ? ratioSum.r / ratioSum.g : ratioSum.b / frames;
-    imageStore(ratio, pixel, vec4(clamp(accumulated, 0.0, 1.0), rawRatio.g, ratioSum.g / frames, frames));
+    // sum(T) = 0: no frame's samples weighed anything, and each frame's ratio was 1 (shadow_rays.comp).
+    float accumulated = ratioSum.g > 0.0 ? ratioSum.r / ratioSum.g : rawRatio.r;
+    imageStore(ratio, pixel,
+               vec4(clamp(accumulated, 0.0, 1.0), ratioSum.b / (frames * frames), ratioSum.g / frames, frames));
   }
 }

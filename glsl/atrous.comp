@@ -6,19 +6,27 @@
 // input lights add, blue; shadow_rays.comp). The same taps filter the irradiance alone (U), so that
 // U D / U is the filtered mean weight, a ratio of sums (no pixel's U D is divided by its own U): an estimate
 // of what the input lights add over what the LGH's grid lights add (docs/design.md §5, "Correcting the
-// irradiance"). With correctIrradiance the output is the ratio times it, shrunk toward 1 as far as the
-// pixel's N = k x frames samples are not trusted (1 + N / (N + prior) (D - 1)), so that the image
-// converges to the exact shadowed irradiance instead of the LGH's times the exact ratio while few samples
-// keep the LGH's; the ratio's edge-stopping stays on S / (U D), which is in [0, 1], so a pixel's heavy
-// weight is averaged, not kept.
+// irradiance"). With correctIrradiance the output is the ratio times it, shrunk toward 1 by how
+// uncertain it is: 1 + f^2 / (f^2 + var D) (D - 1), the Bayes estimate of D under a prior of spread f
+// (the LGH irradiance's expected relative error) around the LGH's irradiance (D = 1). So a noisy D keeps
+// the LGH's irradiance, and as the samples, taps and frames make D certain the image converges to the
+// exact shadowed irradiance instead of the LGH's times the exact ratio. D's variance comes with the raw
+// ratio (green: var(U D), its samples' spread pooled with a prior, shadow_rays.comp; over N frames the
+// sum of theirs / N^2, accumulate.comp). The first pass averages independent pixels, so it filters that
+// variance with the squared tap weights (as Schied et al. 2017 do for every pass); later passes average
+// overlapping neighbourhoods of those averages, whose noise is correlated, and their blur biases D where
+// it varies, so they claim no further certainty (measured: trusting their squared weights too made the
+// corrected image worse than the uncorrected one at alpha 0.5). The ratio's edge-stopping stays on
+// S / (U D), which is in [0, 1], so a pixel's heavy weight is averaged, not kept.
 // With temporal accumulation the ratio holds N frames (alpha of the raw ratio): its noise falls as
 // 1/sqrt(N), and the ratio sigma shrinks as N^-sigmaFade and the pixel skips the floor(sigmaFade
 // log2 N) widest passes (at fade 1/2: one per 4x the frames, as the noise halves), so that the filter's
 // blur across shadow edges and contact shadows does not become the accumulated estimate's error floor:
 // the filter vanishes as N grows.
-//   stage 0: (raw ratio, irradiance) -> (S, U D, U)
-//   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U D, U)
-//   stage 2: (S, U D, U) -> visibility factor (r): S / (U D), times the shrunk correction with
+//   stage 0: (raw ratio, irradiance) -> (S, U D, U, var(U D))
+//   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U D, U); var with squared weights
+//            in the first pass (step 1), kept in the others
+//   stage 2: (S, U D, U, var) -> visibility factor (r): S / (U D), times the shrunk correction with
 //            correctIrradiance; the ratio S / (U D) (g) and the mean weight U D / U (b); the raw ratio
 //            where U D is 0, mean weight 1 where U is 0
 #include "shared/bindings.h"
@@ -28,7 +36,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/gbuffer.glsl"
 
 layout(binding = LGH_TEXTURE_FILTER_SIGNAL)
-    uniform sampler2D signalIn;  // stage 0: raw ratio (r), weight U D (b), frames (a); 1, 2: (S, U D, U) in r, g, b
+    uniform sampler2D signalIn;  // stage 0: raw ratio (r), var(U D) (g), U D (b), frames (a); 1, 2: (S, U D, U, var)
 layout(binding = LGH_TEXTURE_FILTER_SECOND) uniform sampler2D
     irradiance;  // unshadowed irradiance (stage 0), raw ratio (stages 1, 2)
 layout(rgba32f, binding = LGH_IMAGE_FILTER_OUT) uniform writeonly image2D signalOut;
@@ -41,8 +49,7 @@ uniform float ratioSigma;       // ratio difference at weight e^-1/2 (from the s
 uniform float sigmaFade;        // ratio sigma x N^-sigmaFade for a ratio accumulated over N frames
 uniform int passes;             // the filter's stage-1 passes (steps 1, 2, ..., 2^(passes - 1))
 uniform int correctIrradiance;  // output the ratio times the filtered mean weight (ShadowSettings)
-uniform float correctionSamples;  // k: the raw ratio's samples per frame
-uniform float correctionPrior;    // samples' worth of trust in the LGH's irradiance (D = 1)
+uniform float lghError;         // f: the LGH irradiance's expected relative error (the prior spread of D)
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -51,20 +58,21 @@ void main() {
   if (stage == 0) {
     vec4 raw = texelFetch(signalIn, pixel, 0);
     float u = max(luminance(texelFetch(irradiance, pixel, 0).rgb), 0.0), weighted = max(raw.b, 0.0);  // U, U D
-    imageStore(signalOut, pixel, vec4(weighted * raw.r, weighted, u, 0.0));
+    imageStore(signalOut, pixel, vec4(weighted * raw.r, weighted, u, max(raw.g, 0.0)));
     return;
   }
   vec4 centre = texelFetch(signalIn, pixel, 0);
-  vec4 raw = texelFetch(irradiance, pixel, 0);  // the raw ratio: r, weight U D b, frames a
+  vec4 raw = texelFetch(irradiance, pixel, 0);  // the raw ratio: r, var(U D) g, U D b, frames a
   if (stage == 2) {
     // S <= U D tap by tap (a ratio is at most 1), so S / (U D) stays in [0, 1] however small U D is; only
     // U D = 0 (no light, or every sample weighed 0) has no quotient.
     float ratio = clamp(centre.g > 0.0 ? centre.r / centre.g : raw.r, 0.0, 1.0);
     float meanWeight = centre.b > 0.0 ? centre.g / centre.b : 1.0;  // U = 0: nothing to correct
-    // The correction trusts the mean weight in proportion to the samples behind it, N / (N + prior):
-    // shrinkage toward the LGH's irradiance (D = 1), whose error is smaller than a few samples' noise.
-    float samplesSeen = correctionSamples * max(raw.a, 1.0);
-    float trust = samplesSeen / max(samplesSeen + correctionPrior, 1e-30);
+    // The correction trusts the mean weight as far as it is more certain than the LGH's irradiance:
+    // f^2 / (f^2 + var D), var D = var(U D) / U^2 (U is exact but for the interleaving's resolve).
+    float varianceOfD = centre.b > 0.0 ? centre.a / (centre.b * centre.b) : 0.0;
+    float prior = lghError * lghError;
+    float trust = prior > 0.0 ? prior / (prior + varianceOfD) : 0.0;
     float correction = 1.0 + trust * (meanWeight - 1.0);
     imageStore(signalOut, pixel, vec4(correctIrradiance != 0 ? ratio * correction : ratio, ratio, meanWeight, 1.0));
     return;
@@ -85,7 +93,7 @@ void main() {
   float centreRatio = centre.g > 0.0 ? centre.r / centre.g : raw.r;
   float sigma = ratioSigma * pow(frames, -sigmaFade);
   vec3 sum = vec3(0.0);
-  float weightSum = 0.0;
+  float weightSum = 0.0, varianceSum = 0.0;
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
       ivec2 q = pixel + ivec2(dx, dy) * stepSize;
@@ -100,9 +108,11 @@ void main() {
                 pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) *
                 exp(-0.5 * (plane * plane + dr * dr));
       sum += w * v.rgb;
+      varianceSum += w * w * v.a;
       weightSum += w;
     }
   }
   // The centre tap has weight (3/8)^2 > 0, so weightSum > 0.
-  imageStore(signalOut, pixel, vec4(sum / weightSum, 0.0));
+  float variance = stepSize == 1 ? varianceSum / (weightSum * weightSum) : centre.a;
+  imageStore(signalOut, pixel, vec4(sum / weightSum, variance));
 }

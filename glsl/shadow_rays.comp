@@ -13,12 +13,13 @@
 // far, or at neither. Then
 //   F' mean(w V) estimates the shadowed irradiance's luminance sum_i a_i G_i V_i, and
 //   F' mean(w)   the unshadowed one, sum_i a_i G_i, which the LGH's irradiance (luminance C) approximates.
-// Writes the raw visibility ratio r = sum w V / sum w (red), the rays traced (green) and the ratio's
+// Writes the raw visibility ratio r = sum w V / sum w (red), the variance of T (green) and the ratio's
 // weight T = F' mean(w) (blue): the samples' estimate of what the input lights add here, on the scale of
 // the light pass's irradiance, by which the filter and the accumulation weigh the ratio; their sums of T
 // over sums of the irradiance C estimate D, what the input lights add over what the LGH's lights add, by
-// which the irradiance is corrected (docs/design.md §5, "Weighing the samples" and "Correcting the
-// irradiance"). Only sums are divided: with interleaving one tile's C can be all but 0 where T is not.
+// which the irradiance is corrected as far as T's variance allows (docs/design.md §5, "Weighing the
+// samples" and "Correcting the irradiance"). Only sums are divided: with interleaving one tile's C can be
+// all but 0 where T is not.
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/bindings.h"
 #include "shared/bvh_traverse.glsl"
@@ -40,7 +41,7 @@ layout(std430, binding = LGH_BINDING_PASS2) readonly buffer ShadowSlots { uint s
 layout(std430, binding = LGH_BINDING_PASS3) readonly buffer GridLights { GpuGridLight gridLights[]; };
 layout(std430, binding = LGH_BINDING_PASS4) readonly buffer Targets { uint clusterTargets[]; };
 layout(rgba32f,
-       binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D ratioOut;  // r: visibility ratio, g: rays traced
+       binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D ratioOut;  // r: visibility ratio, g: T's variance, b: T
 
 uniform uint samples;       // k
 uniform uint tilesPerAxis;  // the slots are in the light pass's (tiled) layout
@@ -53,6 +54,7 @@ uniform float spread;         // jitter scale: the jitter's standard deviation i
 uniform int uniformSelection;
 uniform int everyLevelSelected;  // 0 when the finest level is skipped: F' / C then compares unlike sums
 uniform float defensive;         // the light pass's defensive share (ShadowSettings::selectionDefensive)
+uniform float sampleSpread;      // the prior spread of one sample's D (ShadowSettings::correctionSampleSpread)
 uniform float clampDistance;
 // The blending parameters of the light pass, to recompute a selected light's importance.
 uniform float alpha;
@@ -131,7 +133,7 @@ void main() {
   uvec2 p = uvec2(pixel);
   uvec2 tiled = (p % tilesPerAxis) * tileSize + p / tilesPerAxis;
   uint pixelIndex = tiled.y * (tilesPerAxis * tileSize.x) + tiled.x;
-  float visible = 0.0, weights = 0.0, rays = 0.0, estimate = 0.0;
+  float visible = 0.0, weights = 0.0, squares = 0.0, estimate = 0.0, variance = 0.0;
   if (s.valid) {
     vec3 origin = offsetRayOrigin(s.position, s.normal);
     Rng rng = makeRng(pixelIndex, frameSeed ^ 0x5bd1e995u);
@@ -177,6 +179,7 @@ void main() {
                         : luminance(e);
       float weight = importance > 0.0 ? added / importance : 0.0;
       weights += weight;
+      squares += weight * weight;
       // The sample adds nothing here (no drawn light reaches x): a ray would decide nothing.
       if (weight == 0.0) continue;
       vec3 toLight = target - origin;
@@ -184,7 +187,6 @@ void main() {
       // Stop short of the light by a relative margin: VPLs sit on surfaces, and so may a cluster's centre.
       bool blocked = rayLength > 0.0 && traceAnyHit(origin, toLight / rayLength, 0.0, rayLength * (1.0 - 1e-3));
       visible += weight * (blocked ? 0.0 : 1.0);
-      rays += 1.0;
     }
   }
   // No selected light (nothing lights this pixel through the LGH): visibility 1 multiplies zero anyway.
@@ -199,8 +201,15 @@ void main() {
   if (uniformSelection != 0) {
     estimate = lgh;
   } else if (s.valid && samples > 0u) {
-    float meanWeight = weights / float(samples);
-    estimate = everyLevelSelected != 0 ? shadowTotals[pixelIndex] * meanWeight : lgh * meanWeight;
+    float k = float(samples), meanWeight = weights / k;
+    float scale = everyLevelSelected != 0 ? shadowTotals[pixelIndex] : lgh;  // T = scale x mean(w)
+    estimate = scale * meanWeight;
+    // T's variance, by which the filter trusts the correction: one sample's variance over k, that
+    // variance the k samples' own (unbiased, from the second sample on) pooled with a prior worth one
+    // sample, (sampleSpread C)^2, so that one sample, or k alike by chance, is not taken for a certain D.
+    float sampleVariance =
+        k > 1.0 ? scale * scale * max(squares / k - meanWeight * meanWeight, 0.0) * k / (k - 1.0) : 0.0;
+    variance = (sampleSpread * sampleSpread * lgh * lgh + (k - 1.0) * sampleVariance) / (k * k);
   }
-  imageStore(ratioOut, pixel, vec4(ratio, rays, estimate, 1.0));
+  imageStore(ratioOut, pixel, vec4(ratio, variance, estimate, 1.0));
 }

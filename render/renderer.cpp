@@ -44,7 +44,7 @@ std::string estimateKey(RenderSettings settings) {
                                                  "accumulate-max-frames",
                                                  "accumulate-filter-fade",
                                                  "shadow-correct-irradiance",  // applied to the history's sums
-                                                 "shadow-correction-prior"};
+                                                 "shadow-correction-lgh-error"};
   std::ostringstream key;
   key.precision(9);
   visitSettings(settings, [&](const auto& value, const SettingInfo& info) {

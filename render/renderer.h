@@ -118,7 +118,7 @@ class Renderer {
   IrradianceCorrection irradianceCorrection() const {
     const ShadowSettings& shadows = settings_.shadows;
     const bool enabled = shadows.correctIrradiance && !shadows.skipFinest && !settings_.lightPass.bruteForce;
-    return {enabled, float(shadows.samples), shadows.correctionPrior};
+    return {enabled, shadows.correctionError};
   }
   bool interleaved() const { return settings_.lightPass.interleave > 1; }
   bool accumulating() const { return settings_.indirect && settings_.accumulation.enabled; }

@@ -61,9 +61,10 @@ struct ShadowSettings {
   bool weighTargets = true;       // weigh a sample by what its drawn targets add over what the centre adds
   bool blendTargets = true;       // blend each drawn target by its own distance, not its grid light's centre's
   bool correctIrradiance = true;  // scale the indirect light by the samples' mean weight (weighTargets), shrunk:
-  float correctionPrior = 16.0f;  // samples' worth of trust in the LGH's irradiance against the mean weight
-  float defensive = 0.0f;         // a grid light's selection importance adds this x its cosine-free contribution
-  float spread = 1.0f;            // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
+  float correctionError = 0.15f;  // the LGH irradiance's expected relative error, trusted against the mean weight's
+  float correctionSampleSpread = 1.0f;  // the prior spread of one sample's mean weight, pooled with the samples'
+  float defensive = 0.0f;               // a grid light's selection importance adds this x its cosine-free contribution
+  float spread = 1.0f;  // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
 
   // Input lights drawn per grid light each frame: at least one per shadow sample, so that k samples of one
   // grid light at a pixel choose among k or more lights and more samples keep lowering the error (m lights
@@ -194,14 +195,20 @@ void visitSettings(Settings& s, Visitor&& visit) {
         SettingInfo{"shadow-correct-irradiance",
                     "scale the shadowed indirect light by the weighed samples' filtered mean weight, an unbiased "
                     "estimate of what the input lights add over what the grid lights add, shrunk toward 1 for few "
-                    "samples (shadow-correction-prior): the image converges to the exact shadowed irradiance "
+                    "samples (shadow-correction-lgh-error): the image converges to the exact shadowed irradiance "
                     "instead of the LGH's irradiance times the exact ratio"});
-  visit(shadows.correctionPrior,
-        SettingInfo{"shadow-correction-prior",
-                    "with shadow-correct-irradiance, how many samples' worth the LGH's irradiance counts against the "
-                    "mean weight: a pixel whose ratio holds N = k x frames samples is scaled by 1 + N / (N + prior) "
-                    "x (mean weight - 1), so few samples keep the LGH's irradiance and many converge to the exact one",
-                    0.0, 1e4});
+  visit(shadows.correctionError,
+        SettingInfo{"shadow-correction-lgh-error",
+                    "with shadow-correct-irradiance, the LGH irradiance's expected relative error f: the mean weight D "
+                    "is trusted by f^2 / (f^2 + var D), so a noisy D (few samples, one frame) keeps the LGH's "
+                    "irradiance and a certain one (many samples, taps or frames) converges to the exact one",
+                    0.0, 10.0});
+  visit(shadows.correctionSampleSpread,
+        SettingInfo{"shadow-correction-sample-spread",
+                    "with shadow-correct-irradiance, the prior spread (standard deviation) of one shadow sample's "
+                    "mean weight, pooled as one sample's worth with the k samples' own spread to give D's variance "
+                    "(with k = 1 it is the only estimate)",
+                    0.0, 1e3});
   visit(shadows.defensive,
         SettingInfo{"shadow-defensive",
                     "defensive selection: a grid light's importance for shadow samples adds this times what it would "

@@ -35,6 +35,7 @@ void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const
   program_.set("uniformSelection", int(lightPass.shadows.uniform));
   program_.set("everyLevelSelected", int(!lightPass.shadows.skipFinest));
   program_.set("defensive", lightPass.shadows.selectionDefensive());
+  program_.set("sampleSpread", lightPass.shadows.correctionSampleSpread);
   program_.set("clampDistance", lightPass.clampDistance);
   program_.set("alpha", lightPass.pass.alpha);
   program_.set("topCellSize", float(hierarchy.grid.topCellSize));
@@ -63,8 +64,7 @@ void ShadowFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& rawR
   program_.set("sigmaFade", sigmaFade);
   program_.set("passes", options.passes);
   program_.set("correctIrradiance", int(correction.enabled));
-  program_.set("correctionSamples", correction.samplesPerFrame);
-  program_.set("correctionPrior", correction.prior);
+  program_.set("lghError", correction.lghError);
   auto run = [&](int stage, const gl::Texture2D& in, const gl::Texture2D& second, gl::Texture2D& out, int step) {
     in.bindTexture(LGH_TEXTURE_FILTER_SIGNAL);
     second.bindTexture(LGH_TEXTURE_FILTER_SECOND);

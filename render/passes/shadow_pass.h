@@ -33,18 +33,17 @@ class ShadowRayPass {
 };
 
 // How the filter's output scales the LGH's irradiance by the shadow samples' mean weight D: by
-// 1 + N / (N + prior) (D - 1) at a pixel whose ratio holds N = samplesPerFrame x frames samples.
+// 1 + f^2 / (f^2 + var D) (D - 1), var D the filtered variance of the pixel's D.
 struct IrradianceCorrection {
   bool enabled = false;
-  float samplesPerFrame = 0.0f;  // k
-  float prior = 0.0f;            // samples' worth of trust in the LGH's irradiance
+  float lghError = 0.0f;  // f: the LGH irradiance's expected relative error
 };
 
 class ShadowFilterPass {
  public:
   ShadowFilterPass();
-  // With correction.enabled, r is the ratio times the filtered mean weight shrunk toward 1 by the pixel's
-  // samples (ShadowSettings::correctIrradiance, correctionPrior).
+  // With correction.enabled, r is the ratio times the filtered mean weight shrunk toward 1 by its variance
+  // (ShadowSettings::correctIrradiance, correctionError).
   void execute(const GBuffer& gbuffer, const gl::Texture2D& rawRatio, const gl::Texture2D& irradiance,
                const ShadowFilterSettings& options, const IrradianceCorrection& correction,
                gl::Texture2D& filteredRatio, float sigmaFade = 0.0f);

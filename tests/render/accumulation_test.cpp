@@ -91,8 +91,9 @@ TEST_F(AccumulationTest, StillFramesLowerTheShadowedError) {
 
 // The irradiance correction (ShadowSettings::correctIrradiance) against the exact shadowed irradiance:
 // accumulated over many frames it falls below the floor of the LGH's irradiance times the exact ratio,
-// which no frame count lowers; the prior keeps one frame of a single sample near the uncorrected
-// estimate, which the unshrunk correction (prior 0) is not.
+// which no frame count lowers; trusted by its variance, one frame of a single sample stays near the
+// uncorrected estimate and one of 16 beats both the uncorrected and the fully trusted correction (a prior
+// spread f = 10: D taken as it is), whose noise exceeds the LGH's error it removes.
 TEST_F(AccumulationTest, CorrectedIrradianceConvergesBeyondTheLghAndFewSamplesKeepIt) {
   const SceneGpu gpu(scene);
   settings.image.width = 64;  // brute force: kept small
@@ -103,26 +104,30 @@ TEST_F(AccumulationTest, CorrectedIrradianceConvergesBeyondTheLghAndFewSamplesKe
   renderer.render(view());
   const ImageRGBA exact = exactShadowed(renderer, gpu);
 
-  auto errorAfter = [&](int samples, bool correct, float prior, int frames) {
+  auto errorAfter = [&](int samples, bool correct, float lghError, int frames) {
     settings.shadows.samples = samples;
     settings.shadows.correctIrradiance = correct;
-    settings.shadows.correctionPrior = prior;
+    settings.shadows.correctionError = lghError;
     renderer.setSettings(settings);
     renderer.restartAccumulation();
     for (int f = 0; f < frames; ++f) renderer.render(view());
     return shadowedError(renderer, exact);
   };
-  const float prior = ShadowSettings{}.correctionPrior;
-  const double floorLgh = errorAfter(4, false, prior, 64), corrected = errorAfter(4, true, prior, 64);
-  const double one = errorAfter(1, false, prior, 1), oneShrunk = errorAfter(1, true, prior, 1),
-               oneUnshrunk = errorAfter(1, true, 0.0f, 1);
+  const float lghError = ShadowSettings{}.correctionError;
+  const double floorLgh = errorAfter(4, false, lghError, 64), corrected = errorAfter(4, true, lghError, 64);
+  const double one = errorAfter(1, false, lghError, 1), oneShrunk = errorAfter(1, true, lghError, 1),
+               oneUnshrunk = errorAfter(1, true, 10.0f, 1);
+  const double sixteen = errorAfter(16, false, lghError, 1), sixteenShrunk = errorAfter(16, true, lghError, 1),
+               sixteenUnshrunk = errorAfter(16, true, 10.0f, 1);
   std::printf(
       "  64 frames, k = 4: uncorrected %.4f, corrected %.4f; one frame, k = 1: uncorrected %.4f, "
-      "corrected %.4f, prior 0 %.4f\n",
-      floorLgh, corrected, one, oneShrunk, oneUnshrunk);
+      "corrected %.4f, fully trusted %.4f; k = 16: %.4f, %.4f, %.4f\n",
+      floorLgh, corrected, one, oneShrunk, oneUnshrunk, sixteen, sixteenShrunk, sixteenUnshrunk);
   EXPECT_LT(corrected, 0.9 * floorLgh) << "the correction lowers the LGH's floor";
   EXPECT_LT(oneShrunk, 1.1 * one) << "one sample keeps (nearly) the LGH's irradiance";
   EXPECT_LT(oneShrunk, oneUnshrunk) << "the prior shrinks a single sample's noise";
+  EXPECT_LT(sixteenShrunk, sixteen) << "16 samples' D, trusted by its variance, lowers the error";
+  EXPECT_LT(sixteenShrunk, sixteenUnshrunk) << "and is not trusted beyond its variance";
 }
 
 // With n x n interleaving a pixel's tile sees 1/n^2 of the lights, so its LGH irradiance C can be all but
@@ -241,7 +246,7 @@ TEST_F(AccumulationTest, ChangedLightsOrSettingsRestart) {
   settings.filter.ratioSigma *= 2.0f;
   renderer.setSettings(settings);
   EXPECT_EQ(renderer.render(view()).accumulatedFrames, 2) << "the filter runs on the history: no restart";
-  settings.shadows.correctionPrior *= 2.0f;
+  settings.shadows.correctionError *= 2.0f;
   renderer.setSettings(settings);
   EXPECT_EQ(renderer.render(view()).accumulatedFrames, 3) << "the correction scales the history's sums: no restart";
   settings.lightPass.alpha *= 2.0f;
