@@ -18,7 +18,7 @@ def main(out):
     print("Relative RMSE of the shadowed indirect light (irradiance x visibility) against the Embree reference;")
     print("320x180, alpha 2, S1, 1x1. `lights`: rays to input lights drawn by share, resampled, weighed and blended by")
     print("their own distance, the irradiance corrected by the samples' mean weight D as far as its variance allows,")
-    print("f^2 / (f^2 + var D), f = 0.15 (default); `uncorrected`: the same without the correction")
+    print("f^2 / (f^2 + var D), f = 0.1 (default); `uncorrected`: the same without the correction")
     print("(--shadow-correct-irradiance=false); `unshrunk`: the correction trusted whatever its variance")
     print("(--shadow-correction-lgh-error=10); `centres`: uncorrected, blended by their grid light's centre's distance")
     print("(--shadow-blend-targets=false);")

@@ -61,7 +61,7 @@ struct ShadowSettings {
   bool weighTargets = true;       // weigh a sample by what its drawn targets add over what the centre adds
   bool blendTargets = true;       // blend each drawn target by its own distance, not its grid light's centre's
   bool correctIrradiance = true;  // scale the indirect light by the samples' mean weight (weighTargets), shrunk:
-  float correctionError = 0.15f;  // the LGH irradiance's expected relative error, trusted against the mean weight's
+  float correctionError = 0.1f;   // the LGH irradiance's expected relative error, trusted against the mean weight's
   float correctionSampleSpread = 1.0f;  // the prior spread of one sample's mean weight, pooled with the samples'
   float defensive = 0.0f;               // a grid light's selection importance adds this x its cosine-free contribution
   float spread = 1.0f;  // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
