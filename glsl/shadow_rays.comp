@@ -205,11 +205,11 @@ void main() {
     float scale = everyLevelSelected != 0 ? shadowTotals[pixelIndex] : lgh;  // T = scale x mean(w)
     estimate = scale * meanWeight;
     // T's variance, by which the filter trusts the correction: one sample's variance over k, that
-    // variance the k samples' own (unbiased, from the second sample on) pooled with a prior worth one
-    // sample, (sampleSpread C)^2, so that one sample, or k alike by chance, is not taken for a certain D.
-    float sampleVariance =
-        k > 1.0 ? scale * scale * max(squares / k - meanWeight * meanWeight, 0.0) * k / (k - 1.0) : 0.0;
-    variance = (sampleSpread * sampleSpread * lgh * lgh + (k - 1.0) * sampleVariance) / (k * k);
+    // variance the k samples' own (unbiased: their squared deviations over k - 1) pooled with a prior
+    // worth one sample, (sampleSpread C)^2, so that one sample, or k alike by chance, is not taken for a
+    // certain D: ((sampleSpread C)^2 + sum (T_j - T)^2) / k, over k.
+    float deviations = scale * scale * max(squares - k * meanWeight * meanWeight, 0.0);  // sum (T_j - T)^2
+    variance = (sampleSpread * sampleSpread * lgh * lgh + deviations) / (k * k);
   }
   imageStore(ratioOut, pixel, vec4(ratio, variance, estimate, 1.0));
 }

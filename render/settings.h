@@ -60,9 +60,9 @@ struct ShadowSettings {
   bool resampleTargets = true;    // each pixel picks among the drawn targets by what they add there
   bool weighTargets = true;       // weigh a sample by what its drawn targets add over what the centre adds
   bool blendTargets = true;       // blend each drawn target by its own distance, not its grid light's centre's
-  bool correctIrradiance = true;  // scale the indirect light by the samples' mean weight (weighTargets), shrunk:
-  float correctionError = 0.1f;   // the LGH irradiance's expected relative error, trusted against the mean weight's
-  float correctionSampleSpread = 1.0f;  // the prior spread of one sample's mean weight, pooled with the samples'
+  bool correctIrradiance = true;  // scale the indirect light by the samples' mean weight D, shrunk by its variance
+  float correctionError = 0.1f;   // the LGH irradiance's expected relative error: the prior spread of D
+  float correctionSampleSpread = 1.0f;  // the prior spread of one sample's D, pooled with the k samples' own
   float defensive = 0.0f;               // a grid light's selection importance adds this x its cosine-free contribution
   float spread = 1.0f;  // jitter of a cluster's shadow-ray target (targets = 0), in its standard deviations
 
@@ -194,8 +194,8 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(shadows.correctIrradiance,
         SettingInfo{"shadow-correct-irradiance",
                     "scale the shadowed indirect light by the weighed samples' filtered mean weight, an unbiased "
-                    "estimate of what the input lights add over what the grid lights add, shrunk toward 1 for few "
-                    "samples (shadow-correction-lgh-error): the image converges to the exact shadowed irradiance "
+                    "estimate of what the input lights add over what the grid lights add, shrunk toward 1 as far as it "
+                    "is uncertain (shadow-correction-lgh-error): the image converges to the exact shadowed irradiance "
                     "instead of the LGH's irradiance times the exact ratio"});
   visit(shadows.correctionError,
         SettingInfo{"shadow-correction-lgh-error",
