@@ -7,7 +7,7 @@ GPU_NAMESPACE_BEGIN
 
 GPU_CONST uint kMaxLightPassLevels = 16u;
 GPU_CONST uint kMaxShadowSamples = 16u;
-GPU_CONST uint kMaxShadowTargets = 16u;  // input lights drawn per grid light per frame (shadow_targets.comp)
+GPU_CONST uint kMaxShadowTargets = 32u;  // input lights drawn per grid light per frame (shadow_targets.comp): 2k
 GPU_CONST uint kMaxInterleave = 8u;      // n x n interleaved sampling: n <= 8
 
 GPU_CONST uint kSelectSkipFinest = 1u;  // the finest level blended takes no part (the paper skips S1)

@@ -27,10 +27,18 @@ void selectShadowSample(uint pixelIndex, uint lightId, float importance, uint k,
 #else
   float total = atomicAdd(shadowTotals[pixelIndex], importance) + importance;
 #endif
-  // Independent uniforms per (pixel, light, slot, frame): a stateless hash, no stored RNG.
+  // Stratified over the slots: the fragment takes c = floor(k p + u) of them, p = importance / total, a
+  // uniformly random c of the k (selection sampling, Knuth's Algorithm S: slot j is taken with
+  // probability (still to take) / (slots left)). Each slot is still taken with probability p, by
+  // uniforms independent of other fragments', so each slot alone is the reservoir above; but the k
+  // slots now hold a light about k p_i times rather than binomially often (and small lights, k p < 1,
+  // at most once: sampling without replacement), so the k samples' mean varies less, the more so the
+  // larger k. Most fragments take no slot and draw one uniform. Hashed per (pixel, light, frame).
   Rng rng = makeRng(lightId * 2654435761u ^ pixelIndex, frameSeed);
-  for (uint j = 0u; j < k; ++j) {
-    if (nextFloat(rng) * total < importance) {
+  uint taken = min(uint(float(k) * (importance / total) + nextFloat(rng)), k);
+  for (uint j = 0u; taken > 0u; ++j) {
+    if (nextFloat(rng) * float(k - j) < float(taken)) {
+      --taken;
 #ifdef LGH_SELECTION_NO_ATOMICS
       shadowSlots[pixelIndex * k + j] = lightId;
 #else

@@ -1,5 +1,6 @@
 // Indirect shadows: the light pass picks each light for a shadow slot with probability f_i / sum f
-// (chi-square over many frames, k = 1 and 4, with and without interleaving), and importance-picked
+// (chi-square over many frames, k = 1 and 4, with and without interleaving), stratified over the k slots
+// of a frame, and importance-picked
 // shadow rays estimate the exact shadowed image better than uniformly picked ones (paper Figs. 7-8).
 #include <cmath>
 #include <cstdio>
@@ -48,72 +49,98 @@ double chiSquareCritical01(int dof) {
   return table.at(dof);
 }
 
+// The index of image pixel q (rows top-down) in the light pass's (tiled) per-pixel buffers.
+size_t tiledPixelIndex(glm::ivec2 q, int n, const TileLayout& layout) {
+  const glm::ivec2 gl(q.x, 7 - q.y);  // GL rows are bottom-up: image row y is GL row 7 - y (8 x 8 images)
+  const glm::ivec2 tiled = (gl % n) * layout.tileSize + gl / n;
+  return size_t(tiled.y * layout.targetSize().x + tiled.x);
+}
+
+// Each of the 12 lights' luminance contribution at image pixel q, 0 for lights not in q's tile.
+std::vector<double> lightContributions(const SceneGpu& gpu, const Renderer& renderer, const ImageRGBA& position,
+                                       const ImageRGBA& normal, glm::ivec2 q, int n) {
+  const glm::ivec2 gl(q.x, 7 - q.y);
+  const int tile = (gl.x % n) + n * (gl.y % n);
+  const glm::dvec3 x(position.at(q.x, q.y)), nx(normal.at(q.x, q.y));
+  std::vector<double> f(12, 0.0);
+  for (int i = 0; i < 12; ++i) {
+    if (i % (n * n) != tile) continue;  // lights are dealt to tiles by index within the level
+    const gpu::GpuPunctualLight& l = gpu.punctualLights()[size_t(i)];
+    f[size_t(i)] = luminance(lightContribution(glm::dvec3(l.position), glm::dvec3(l.intensity), glm::dvec3(0.0), 1.0, x,
+                                               &nx, renderer.clampDistance()));
+  }
+  return f;
+}
+
+// Renders `frames` frames of the lit floor with every light at every pixel (selection among the 12 S0
+// lights) and counts, per frame and pixel, the slots holding each light: counts[frame][pixel][light].
+std::vector<std::vector<std::vector<int>>> slotCounts(Renderer& renderer, const CameraView& view,
+                                                      const std::vector<glm::ivec2>& pixels, int n, int k, int frames) {
+  const TileLayout layout = TileLayout::of(n, 8, 8);
+  std::vector<std::vector<std::vector<int>>> counts(
+      size_t(frames), std::vector<std::vector<int>>(pixels.size(), std::vector<int>(12, 0)));
+  for (int f = 0; f < frames; ++f) {
+    if (f > 0) renderer.render(view);
+    const std::vector<GLuint> slots =
+        renderer.shadowSlots().slots.download<GLuint>(size_t(layout.targetSize().x * layout.targetSize().y * k));
+    for (size_t p = 0; p < pixels.size(); ++p) {
+      const size_t index = tiledPixelIndex(pixels[p], n, layout);
+      for (int j = 0; j < k; ++j) {
+        const GLuint id = slots[index * size_t(k) + size_t(j)];
+        EXPECT_NE(id, gpu::kNoLight);
+        EXPECT_TRUE(id & gpu::kSlotS0);
+        if (id != gpu::kNoLight) ++counts[size_t(f)][p][id & ~gpu::kSlotS0];
+      }
+    }
+  }
+  return counts;
+}
+
+RenderSettings litFloorSelection(int n, int k) {
+  RenderSettings settings;
+  settings.image.width = settings.image.height = 8;
+  settings.inputLights.maxDirectLights = 0;  // the 12 point lights are S0
+  settings.inputLights.vpls = 0;
+  settings.inputLights.emitterSamples = 0;
+  settings.lightPass.bruteForce = true;  // every light at every pixel: selection among all S0 lights
+  settings.lightPass.interleave = n;
+  settings.shadows.samples = k;
+  return settings;
+}
+
 TEST_F(ShadowTest, SelectionFrequenciesFollowContributions) {
   const Scene scene = loadScene(writeLitFloor(dir));
   const SceneGpu gpu(scene);
   for (int n : {1, 2}) {
     for (int k : {1, 4}) {
       SCOPED_TRACE("interleave " + std::to_string(n) + ", k = " + std::to_string(k));
-      RenderSettings settings;
-      settings.image.width = settings.image.height = 8;
-      settings.inputLights.maxDirectLights = 0;  // the 12 point lights are S0
-      settings.inputLights.vpls = 0;
-      settings.inputLights.emitterSamples = 0;
-      settings.lightPass.bruteForce = true;  // every light at every pixel: selection among all S0 lights
-      settings.lightPass.interleave = n;
-      settings.shadows.samples = k;
+      const RenderSettings settings = litFloorSelection(n, k);
       Renderer renderer(gpu, settings);
       const CameraView view = makeCameraView(resolveCamera(scene, settings), 8, 8);
       renderer.render(view);
       const ImageRGBA position = renderer.readImage(Aov::Position), normal = renderer.readImage(Aov::Normal);
       ASSERT_EQ(renderer.inputLights().count, 12u);
-      const TileLayout layout = TileLayout::of(n, 8, 8);
 
       const std::vector<glm::ivec2> pixels{{1, 1}, {6, 2}, {3, 5}, {5, 6}};
       const int frames = 600 / k;
-      std::vector<std::vector<int>> counts(pixels.size(), std::vector<int>(12, 0));
-      for (int f = 0; f < frames; ++f) {
-        if (f > 0) renderer.render(view);
-        const std::vector<GLuint> slots =
-            renderer.shadowSlots().slots.download<GLuint>(size_t(layout.targetSize().x * layout.targetSize().y * k));
-        for (size_t p = 0; p < pixels.size(); ++p) {
-          const glm::ivec2 q = pixels[p];
-          // GL rows are bottom-up: image row y is GL row 7 - y.
-          const glm::ivec2 gl(q.x, 7 - q.y);
-          const glm::ivec2 tiled = (gl % n) * layout.tileSize + gl / n;
-          const size_t index = size_t(tiled.y * layout.targetSize().x + tiled.x);
-          for (int j = 0; j < k; ++j) {
-            const GLuint id = slots[index * size_t(k) + size_t(j)];
-            ASSERT_NE(id, gpu::kNoLight);
-            ASSERT_TRUE(id & gpu::kSlotS0);
-            ++counts[p][id & ~gpu::kSlotS0];
-          }
-        }
-      }
+      const auto perFrame = slotCounts(renderer, view, pixels, n, k, frames);
       // Expected: each light's luminance contribution at the pixel, among the lights of its tile.
       double chiSquare = 0;
       int dof = 0;
       for (size_t p = 0; p < pixels.size(); ++p) {
-        const glm::ivec2 q = pixels[p], gl(q.x, 7 - q.y);
-        const int tile = (gl.x % n) + n * (gl.y % n);
-        const glm::dvec3 x(position.at(q.x, q.y)), nx(normal.at(q.x, q.y));
-        std::vector<double> f(12, 0.0);
+        const std::vector<double> f = lightContributions(gpu, renderer, position, normal, pixels[p], n);
         double total = 0;
-        for (int i = 0; i < 12; ++i) {
-          if (i % (n * n) != tile) continue;  // lights are dealt to tiles by index within the level
-          const gpu::GpuPunctualLight& l = gpu.punctualLights()[size_t(i)];
-          f[size_t(i)] = luminance(lightContribution(glm::dvec3(l.position), glm::dvec3(l.intensity), glm::dvec3(0.0),
-                                                     1.0, x, &nx, renderer.clampDistance()));
-          total += f[size_t(i)];
-        }
+        for (double fi : f) total += fi;
         const int samples = frames * k;
-        for (int i = 0; i < 12; ++i) {
-          if (f[size_t(i)] == 0.0) {
-            EXPECT_EQ(counts[p][size_t(i)], 0) << "light " << i << " is not in this pixel's tile";
+        for (size_t i = 0; i < 12; ++i) {
+          int count = 0;
+          for (const auto& frame : perFrame) count += frame[p][i];
+          if (f[i] == 0.0) {
+            EXPECT_EQ(count, 0) << "light " << i << " is not in this pixel's tile";
             continue;
           }
-          const double expected = samples * f[size_t(i)] / total;
-          chiSquare += (counts[p][size_t(i)] - expected) * (counts[p][size_t(i)] - expected) / expected;
+          const double expected = samples * f[i] / total;
+          chiSquare += (count - expected) * (count - expected) / expected;
           ++dof;
         }
         --dof;
@@ -123,6 +150,46 @@ TEST_F(ShadowTest, SelectionFrequenciesFollowContributions) {
       EXPECT_LT(chiSquare, chiSquareCritical01(dof));
     }
   }
+}
+
+// The k slots of one frame are stratified: a fragment of share p takes floor(k p + u) of them, so a
+// pixel's slots hold light i about k p_i times, not binomially often, and the k samples' mean varies
+// less. Each slot alone is still an exact reservoir (the frequencies above); here the number of slots
+// holding each light in one frame must vary clearly less than the binomial k p (1 - p) of k
+// independent slots (summed over the lights of four pixels), and its mean must be k p.
+TEST_F(ShadowTest, SlotsOfOneFrameAreStratified) {
+  const Scene scene = loadScene(writeLitFloor(dir));
+  const SceneGpu gpu(scene);
+  const int k = 8, frames = 300;
+  const RenderSettings settings = litFloorSelection(1, k);
+  Renderer renderer(gpu, settings);
+  const CameraView view = makeCameraView(resolveCamera(scene, settings), 8, 8);
+  renderer.render(view);
+  const ImageRGBA position = renderer.readImage(Aov::Position), normal = renderer.readImage(Aov::Normal);
+  const std::vector<glm::ivec2> pixels{{1, 1}, {6, 2}, {3, 5}, {5, 6}};
+  const auto perFrame = slotCounts(renderer, view, pixels, 1, k, frames);
+  double variance = 0, binomial = 0;
+  for (size_t p = 0; p < pixels.size(); ++p) {
+    const std::vector<double> f = lightContributions(gpu, renderer, position, normal, pixels[p], 1);
+    double total = 0;
+    for (double fi : f) total += fi;
+    for (size_t i = 0; i < 12; ++i) {
+      const double share = f[i] / total;
+      double sum = 0, squares = 0;
+      for (const auto& frame : perFrame) {
+        sum += frame[p][i];
+        squares += double(frame[p][i]) * frame[p][i];
+      }
+      const double mean = sum / frames;
+      // The mean count is k p within 5 binomial standard errors.
+      EXPECT_NEAR(mean, k * share, 5.0 * std::sqrt(k * share * (1 - share) / frames) + 1e-9) << "light " << i;
+      variance += (squares - sum * mean) / (frames - 1);
+      binomial += k * share * (1 - share);
+    }
+  }
+  std::printf("  k = %d: slot counts' variance %.3f against %.3f for independent slots (%.2fx)\n", k, variance,
+              binomial, variance / binomial);
+  EXPECT_LT(variance, 0.8 * binomial);
 }
 
 // Paper Figs. 7-8: shadowed indirect light (unshadowed x visibility ratio) against the exact shadowed
