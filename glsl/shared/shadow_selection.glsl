@@ -1,7 +1,8 @@
 // Streaming shadow-sample selection in the light pass (Lin & Yuksel 2019, Appendix A; docs/design.md §5).
 // Each pixel keeps a running importance total F and k slots. A fragment of importance f adds f to F
-// and then, independently for each slot, takes the slot with probability f / F. In any order this
-// leaves light i in a slot with probability f_i / sum f (a weighted reservoir of size 1 per slot).
+// and then takes each slot with probability f / F (the paper decides them independently; here they are
+// stratified, below). In any order this leaves light i in a slot with probability f_i / sum f (a
+// weighted reservoir of size 1 per slot).
 //
 // Concurrent fragments of one pixel: F is advanced with one atomic add, which puts the fragments in
 // a single order and hands each its own prefix total; the slot write is an atomic exchange. The
@@ -36,7 +37,7 @@ void selectShadowSample(uint pixelIndex, uint lightId, float importance, uint k,
   // larger k. Most fragments take no slot and draw one uniform. Hashed per (pixel, light, frame).
   Rng rng = makeRng(lightId * 2654435761u ^ pixelIndex, frameSeed);
   uint taken = min(uint(float(k) * (importance / total) + nextFloat(rng)), k);
-  for (uint j = 0u; taken > 0u; ++j) {
+  for (uint j = 0u; j < k && taken > 0u; ++j) {  // once taken = k - j every slot left is taken
     if (nextFloat(rng) * float(k - j) < float(taken)) {
       --taken;
 #ifdef LGH_SELECTION_NO_ATOMICS
