@@ -1,11 +1,12 @@
 // Indirect shadows: the light pass picks each light for a shadow slot with probability f_i / sum f
 // (chi-square over many frames, k = 1 and 4, with and without interleaving), stratified over the k slots
-// of a frame, and importance-picked
-// shadow rays estimate the exact shadowed image better than uniformly picked ones (paper Figs. 7-8).
+// of a frame, and importance-picked shadow rays estimate the exact shadowed image better than uniformly
+// picked ones (paper Figs. 7-8).
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/quaternion.hpp>
 #include <map>
+#include <numeric>
 
 #include "gl_test_env.h"
 #include "gltf_writer.h"
@@ -49,9 +50,12 @@ double chiSquareCritical01(int dof) {
   return table.at(dof);
 }
 
-// The index of image pixel q (rows top-down) in the light pass's (tiled) per-pixel buffers.
+// Image pixel q (rows top-down) of the 8 x 8 images in GL's rows, bottom-up.
+glm::ivec2 glPixel(glm::ivec2 q) { return {q.x, 7 - q.y}; }
+
+// The index of image pixel q in the light pass's (tiled) per-pixel buffers.
 size_t tiledPixelIndex(glm::ivec2 q, int n, const TileLayout& layout) {
-  const glm::ivec2 gl(q.x, 7 - q.y);  // GL rows are bottom-up: image row y is GL row 7 - y (8 x 8 images)
+  const glm::ivec2 gl = glPixel(q);
   const glm::ivec2 tiled = (gl % n) * layout.tileSize + gl / n;
   return size_t(tiled.y * layout.targetSize().x + tiled.x);
 }
@@ -59,7 +63,7 @@ size_t tiledPixelIndex(glm::ivec2 q, int n, const TileLayout& layout) {
 // Each of the 12 lights' luminance contribution at image pixel q, 0 for lights not in q's tile.
 std::vector<double> lightContributions(const SceneGpu& gpu, const Renderer& renderer, const ImageRGBA& position,
                                        const ImageRGBA& normal, glm::ivec2 q, int n) {
-  const glm::ivec2 gl(q.x, 7 - q.y);
+  const glm::ivec2 gl = glPixel(q);
   const int tile = (gl.x % n) + n * (gl.y % n);
   const glm::dvec3 x(position.at(q.x, q.y)), nx(normal.at(q.x, q.y));
   std::vector<double> f(12, 0.0);
@@ -129,8 +133,7 @@ TEST_F(ShadowTest, SelectionFrequenciesFollowContributions) {
       int dof = 0;
       for (size_t p = 0; p < pixels.size(); ++p) {
         const std::vector<double> f = lightContributions(gpu, renderer, position, normal, pixels[p], n);
-        double total = 0;
-        for (double fi : f) total += fi;
+        const double total = std::accumulate(f.begin(), f.end(), 0.0);
         const int samples = frames * k;
         for (size_t i = 0; i < 12; ++i) {
           int count = 0;
@@ -171,8 +174,7 @@ TEST_F(ShadowTest, SlotsOfOneFrameAreStratified) {
   double variance = 0, binomial = 0;
   for (size_t p = 0; p < pixels.size(); ++p) {
     const std::vector<double> f = lightContributions(gpu, renderer, position, normal, pixels[p], 1);
-    double total = 0;
-    for (double fi : f) total += fi;
+    const double total = std::accumulate(f.begin(), f.end(), 0.0);
     for (size_t i = 0; i < 12; ++i) {
       const double share = f[i] / total;
       double sum = 0, squares = 0;

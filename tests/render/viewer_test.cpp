@@ -118,14 +118,13 @@ TEST_F(ViewerTest, ScriptedScreenshotsMatchLghRender) {
   r = runShell(render + "--shadow-samples 0 -o " + shellQuoted(dir / "render_unshadowed.png"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
 
-  const Image shadowed = readImage(dir / "shadowed.png");
-  ASSERT_EQ(shadowed.width, 160);
-  ASSERT_EQ(shadowed.height, 90);
   // The same computation in both programs (with shadows, the same frame's samples): only the display
   // mapping (the viewer's fragment shader, lgh-render's CPU) can round an 8-bit value differently.
   for (const char* name : {"shadowed", "unshadowed", "direct"}) {
-    const Difference d = compare(readImage(dir / (std::string(name) + ".png")),
-                                 readImage(dir / ("render_" + std::string(name) + ".png")));
+    const Image screenshot = readImage(dir / (std::string(name) + ".png"));
+    ASSERT_EQ(screenshot.width, 160) << name;
+    ASSERT_EQ(screenshot.height, 90) << name;
+    const Difference d = compare(screenshot, readImage(dir / ("render_" + std::string(name) + ".png")));
     std::cout << "[ viewer   ] " << name << ": mean |difference| " << d.mean * 255 << "/255, largest "
               << d.largest * 255 << "/255\n";
     EXPECT_LE(d.largest, 1.0 / 255.0 + 1e-6) << name;
