@@ -11,6 +11,7 @@
 #include "shared/lgh_shading.glsl"
 #include "shared/light_pass_types.h"
 #ifdef LGH_SELECT_SHADOWS
+#include "shared/lgh_types.h"
 #include "shared/shadow_selection.glsl"
 #endif
 
@@ -33,6 +34,44 @@ flat in vec3 lightIntensity;
 flat in vec4 lightLobe;
 flat in vec2 lightBlend;
 flat in uint lightId;  // kSlotS0 | S0 index, or merged grid-light index
+flat in vec3 lightVariance;
+
+#ifdef LGH_SELECT_SHADOWS
+// This frame's drawn lights of every grid light (ShadowTargets: pass.drawnTargets per grid light) and the
+// input lights they index, read with kSelectCountUnselectable.
+layout(std430, binding = LGH_BINDING_PASS4) readonly buffer DrawnTargets { uint drawnTargets[]; };
+layout(std430, binding = LGH_BINDING_PASS5) readonly buffer InputLights { GpuLight inputLights[]; };
+
+// A grid light whose volume covers x but which the selection cannot pick here, its centre in the level's
+// fade-in hole (blend 0) or behind x's tangent plane (contribution 0), may still hold input lights that
+// light x: a light beyond the hole's edge has B_l > 0 at its own distance, one above the plane faces x.
+// The samples' estimate of what the input lights add, F' mean(w) (shadow_rays.comp), blends each light by
+// its own distance, so it counts every input light fully only if every grid light holding it is
+// selectable; without the others the sum falls short and the corrected image comes out the darker the
+// more it trusts it (docs/design.md §5, "Counting the unselectable grid lights"). So one of the grid
+// light's drawn lights r, drawn by its share, adds a_g B_l(|x - p_r|) G_r(x), an unbiased estimate of what
+// its lights add here, to the pixel's unselectable total U, which T adds. No sample is spent on them:
+// their light takes the pixel's visibility ratio. Skipped where the lights within two standard deviations
+// of the centre cannot light x either (all in the hole, all behind the plane, or all facing away).
+void countUnselectable(uint pixelIndex, vec3 x, vec3 n, float d, uint role, float R, float centreBlend) {
+  if ((pass.selectFlags & kSelectCountUnselectable) == 0u || (lightId & kSlotS0) != 0u) return;
+  vec3 variance = lightVariance;
+  if (centreBlend == 0.0 && d + 2.0 * sqrt(variance.x + variance.y + variance.z) <= 0.5 * R) return;
+  if (dot(n, lightPosition - x) <= -2.0 * sqrt(dot(n * n, variance))) return;
+  vec3 m = lightLobe.xyz;  // one-sided (|m| = 1: every light's normal is m; no omni share)
+  bool oneSided = lightLobe.w < 1e-3 && length(m) > 1.0 - 1e-3;
+  if (oneSided && dot(m, x - lightPosition) <= -2.0 * sqrt(dot(m * m, variance))) return;
+  Rng rng = makeRng(lightId * 0x85ebca6bu ^ pixelIndex, pass.frameSeed ^ 0xc2b2ae35u);
+  uint race = min(uint(nextFloat(rng) * float(pass.drawnTargets)), pass.drawnTargets - 1u);
+  uint drawn = drawnTargets[lightId * pass.drawnTargets + race];
+  if (drawn == kNoLight) return;
+  ShadedLight l = decodeInputLight(inputLights[drawn]);
+  float blend =
+      (pass.selectFlags & kSelectBlendTargets) != 0u ? blendWeight(role, distance(l.position, x), R) : centreBlend;
+  float added = blend * luminance(lightIntensity) * geometricFactor(l, x, n, pass.clampDistance);
+  if (added > 0.0) addUnselectable(pixelIndex, added);
+}
+#endif
 
 layout(location = 0) out vec4 irradiance;  // rgb irradiance; a counts shaded fragments
 
@@ -44,21 +83,31 @@ void main() {
   vec4 position = texelFetch(surfacePosition, pixel, 0);
   if (position.w == 0.0) discard;  // background (or tile padding)
   float d = distance(lightPosition, position.xyz);
-  float blend = blendWeight(uint(lightBlend.y), d, lightBlend.x);
+  uint role = uint(lightBlend.y);
+  float R = lightBlend.x;
+  float blend = blendWeight(role, d, R);
+#ifdef LGH_SELECT_SHADOWS
+  uint pixelIndex = uint(pixel.y) * (pass.tilesPerAxis * pass.tileWidth) + uint(pixel.x);
+  bool fadesIn = role == kRoleMiddle || role == kRoleTop;
+  if (blend == 0.0 && fadesIn && d <= 0.5 * R)  // in the fade-in hole (not beyond 2R: the volume's corners)
+    countUnselectable(pixelIndex, position.xyz, texelFetch(surfaceNormal, pixel, 0).xyz, d, role, R, 0.0);
+#endif
   if (blend == 0.0) discard;
   vec3 n = texelFetch(surfaceNormal, pixel, 0).xyz;
   vec3 e =
       lightContribution(lightPosition, lightIntensity, lightLobe.xyz, lightLobe.w, position.xyz, n, pass.clampDistance);
   irradiance = vec4(blend * e, 1.0);
 #ifdef LGH_SELECT_SHADOWS
-  bool finest = uint(lightBlend.y) == kRoleFinest;
+  bool finest = role == kRoleFinest;
   if (!(finest && (pass.selectFlags & kSelectSkipFinest) != 0u)) {
     bool gridLight = (lightId & kSlotS0) == 0u;
     float importance = selectionImportance(irradiance.rgb, lightIntensity, blend, d, pass.clampDistance,
                                            gridLight ? pass.defensive : 0.0);
     if ((pass.selectFlags & kSelectUniform) != 0u && importance > 0.0) importance = 1.0;
-    uint pixelIndex = uint(pixel.y) * (pass.tilesPerAxis * pass.tileWidth) + uint(pixel.x);
-    selectShadowSample(pixelIndex, lightId, importance, pass.shadowSamples, pass.frameSeed);
+    if (importance > 0.0)
+      selectShadowSample(pixelIndex, lightId, importance, pass.shadowSamples, pass.frameSeed);
+    else
+      countUnselectable(pixelIndex, position.xyz, n, d, role, R, blend);
   }
 #endif
 }

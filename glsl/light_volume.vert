@@ -46,6 +46,7 @@ flat out vec3 lightIntensity;
 flat out vec4 lightLobe;    // xyz mean normal, w omni fraction
 flat out vec2 lightBlend;   // x: R, y: role
 flat out uint lightId;      // for shadow-sample selection: kSlotS0 | S0 index, or grid-light index
+flat out vec3 lightVariance;  // per-axis variance of the cluster's lights about its centre (0 for S0)
 
 // 12 triangles of the unit cube [-1,1]^3, counter-clockwise seen from outside: culling front faces
 // leaves exactly one (back) face under every covered pixel, also with the camera inside the cube.
@@ -167,9 +168,11 @@ void main() {
 #ifdef LGH_S0_INPUT
   ShadedLight l = decodeInputLight(lights[index]);
   lightId = kSlotS0 | (index + pass.boundLightOffset);
+  lightVariance = vec3(0.0);
 #else
   ShadedLight l = decodeGridLight(lights[index]);
   lightId = index;
+  lightVariance = max(lights[index].variance, vec3(0.0));
 #endif
   lightPosition = l.position;
   lightIntensity = l.intensity * pass.contributionScale;

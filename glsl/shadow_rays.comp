@@ -10,11 +10,13 @@
 // light is blended by its own distance to x (blendTargets): the levels' B_l sum to 1 at every distance,
 // so over all levels input light i counts a_i G_i(x) exactly; blended by its grid light's centre's
 // distance instead, a light near x can count at a fine level and again at a coarse one whose centre is
-// far, or at neither. Then
+// far, or at neither. Then, up to the lights of grid lights the selection cannot reach at x,
 //   F' mean(w V) estimates the shadowed irradiance's luminance sum_i a_i G_i V_i, and
-//   F' mean(w)   the unshadowed one, sum_i a_i G_i, which the LGH's irradiance (luminance C) approximates.
+//   F' mean(w)   the unshadowed one, sum_i a_i G_i, which the LGH's irradiance (luminance C) approximates;
+// the light pass adds what those lights add, U (one drawn light each, light_volume.frag), so that
+//   T = F' mean(w) + U estimates the whole unshadowed sum.
 // Writes the raw visibility ratio r = sum w V / sum w (red), the variance of T (green) and the ratio's
-// weight T = F' mean(w) (blue): the samples' estimate of what the input lights add here, on the scale of
+// weight T (blue): the samples' estimate of what the input lights add here, on the scale of
 // the light pass's irradiance, by which the filter and the accumulation weigh the ratio; their sums of T
 // over sums of the irradiance C estimate D, what the input lights add over what the LGH's lights add, by
 // which the irradiance is corrected as far as T's variance allows (docs/design.md §5, "Weighing the
@@ -40,6 +42,9 @@ layout(binding = LGH_TEXTURE_SHADOW_IRRADIANCE) uniform sampler2D lightPassIrrad
 layout(std430, binding = LGH_BINDING_PASS2) readonly buffer ShadowSlots { uint shadowSlots[]; };
 layout(std430, binding = LGH_BINDING_PASS3) readonly buffer GridLights { GpuGridLight gridLights[]; };
 layout(std430, binding = LGH_BINDING_PASS4) readonly buffer Targets { uint clusterTargets[]; };
+// What the grid lights that reach the pixel but cannot be selected there add (light_volume.frag,
+// countUnselectable; 0 unless ShadowSettings::countsUnselectable).
+layout(std430, binding = LGH_BINDING_PASS5) readonly buffer ShadowUnselectable { float shadowUnselectable[]; };
 layout(rgba32f,
        binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D ratioOut;  // r: visibility ratio, g: T's variance, b: T
 
@@ -78,20 +83,11 @@ float raisedCosine(float u) {
 }
 const float kRaisedCosineStd = 0.36151;  // sqrt(1/3 - 2/pi^2)
 
-// What light i adds at x per unit of its luminance: cosine, emission lobe, clamped 1 / d^2.
-float geometricFactor(ShadedLight light, vec3 x, vec3 n) {
-  float a = luminance(light.intensity);
-  if (!(a > 0.0)) return 0.0;
-  return luminance(lightContribution(light.position, light.intensity, light.meanNormal, light.omniFraction, x, n,
-                                     clampDistance)) /
-         a;
-}
-
 // What input light `light`, drawn for a grid light of role `role` and radius R, adds at x per unit of
 // its grid light's luminance share: its geometric factor, blended by its own distance (blendTargets).
 float drawnFactorOf(uint light, vec3 x, vec3 n, uint role, float R) {
   ShadedLight l = decodeInputLight(inputLights[light]);
-  float g = geometricFactor(l, x, n);
+  float g = geometricFactor(l, x, n, clampDistance);
   return blendTargets != 0 && g > 0.0 ? g * blendWeight(role, distance(l.position, x), R) : g;
 }
 
@@ -202,8 +198,8 @@ void main() {
     estimate = lgh;
   } else if (s.valid && samples > 0u) {
     float k = float(samples), meanWeight = weights / k;
-    float scale = everyLevelSelected != 0 ? shadowTotals[pixelIndex] : lgh;  // T = scale x mean(w)
-    estimate = scale * meanWeight;
+    float scale = everyLevelSelected != 0 ? shadowTotals[pixelIndex] : lgh;  // T = scale x mean(w) (+ unselectable)
+    estimate = scale * meanWeight + shadowUnselectable[pixelIndex];
     // T's variance, by which the filter trusts the correction: one sample's variance over k, that
     // variance the k samples' own (unbiased: their squared deviations over k - 1) pooled with a prior
     // worth one sample, (sampleSpread C)^2, so that one sample, or k alike by chance, is not taken for a

@@ -200,25 +200,27 @@ FrameStats Renderer::render(const CameraView& view) {
     stats.lightsRebuilt = updateLights();
     stats.accumulatedFrames = updateAccumulation(stats.lightsRebuilt, view);
     const LightPassOptions options = lightPassOptions();
-    LightPassTarget target = lightPassTarget();
-    LightPassDraws draws;
-    // n x n interleaving: the surfaces as n^2 tiles, each shaded by 1/n^2 of the lights.
-    if (interleaved()) timed(passes::kInterleaveSplit, [&] { interleavePass_.split(gbuffer_, tiles_); });
-    // Light volumes: irradiance through the LGH, and k lights per pixel picked for shadow rays.
-    timed(passes::kLightPass,
-          [&] { draws = lightPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, options, target); });
-    // The tiles' irradiance back at full resolution, edge-aware.
-    if (interleaved())
-      timed(passes::kInterleaveResolve, [&] {
-        interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, options.pass.overdraw, irradiance_,
-                                fragmentCounts_);
-      });
-    // Each grid light's shadow-ray targets: input lights drawn by their share of its importance.
+    // Each grid light's shadow-ray targets: input lights drawn by their share of its importance (the light
+    // pass reads them too, for grid lights it cannot select).
     shadowTargets_.races = 0;
     if (drawsShadowTargets())
       timed(passes::kShadowTargets, [&] {
         shadowTargetsPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_,
                                    unsigned(settings_.shadows.drawnTargets()), options.frameSeed, shadowTargets_);
+      });
+    LightPassTarget target = lightPassTarget();
+    LightPassDraws draws;
+    // n x n interleaving: the surfaces as n^2 tiles, each shaded by 1/n^2 of the lights.
+    if (interleaved()) timed(passes::kInterleaveSplit, [&] { interleavePass_.split(gbuffer_, tiles_); });
+    // Light volumes: irradiance through the LGH, and k lights per pixel picked for shadow rays.
+    timed(passes::kLightPass, [&] {
+      draws = lightPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, options, target, &shadowTargets_);
+    });
+    // The tiles' irradiance back at full resolution, edge-aware.
+    if (interleaved())
+      timed(passes::kInterleaveResolve, [&] {
+        interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, options.pass.overdraw, irradiance_,
+                                fragmentCounts_);
       });
     // Shadow rays to the picked lights: the raw visibility ratio.
     if (shadowed())

@@ -60,6 +60,7 @@ struct ShadowSettings {
   bool resampleTargets = true;    // each pixel picks among the drawn targets by what they add there
   bool weighTargets = true;       // weigh a sample by what its drawn targets add over what the centre adds
   bool blendTargets = true;       // blend each drawn target by its own distance, not its grid light's centre's
+  bool countUnselectable = true;  // grid lights that reach a pixel but cannot be selected there add to T
   bool correctIrradiance = true;  // scale the indirect light by the samples' mean weight D, shrunk by its variance
   float correctionError = 0.1f;   // the LGH irradiance's expected relative error: the prior spread of D
   float correctionSampleSpread = 1.0f;  // the prior spread of one sample's D, pooled with the k samples' own
@@ -77,6 +78,13 @@ struct ShadowSettings {
   // The defensive share the light pass and the shadow pass use: only samples weighed by their drawn
   // targets have heavy weights to bound (the paper's jittered centres are weighed by the centre alone).
   float selectionDefensive() const { return targets > 0 && weighTargets ? defensive : 0.0f; }
+
+  // Whether the light pass counts what unselectable grid lights add (kSelectCountUnselectable): only the
+  // weighed samples' T estimates the input lights' sum, and only when every level is selected by
+  // contribution is it that sum's (with the finest level skipped or uniform selection T is not).
+  bool countsUnselectable() const {
+    return countUnselectable && targets > 0 && weighTargets && !skipFinest && !uniform && samples > 0;
+  }
 };
 
 // The a-trous filter over the shadow ratio (ShadowFilterPass).
@@ -193,6 +201,12 @@ void visitSettings(Settings& s, Visitor&& visit) {
                     "blend each drawn target by its own distance to the pixel (false: by its grid light's centre's): "
                     "the levels' blending sums to 1 at every distance, so the weighed samples converge to the exact "
                     "ratio instead of one in which lights near a level's fade count twice or not at all"});
+  visit(shadows.countUnselectable,
+        SettingInfo{"shadow-count-unselectable",
+                    "grid lights that reach a pixel but cannot be selected there (their centre in a level's fade-in "
+                    "hole, behind the pixel's tangent plane or facing away) add what one of their drawn targets adds "
+                    "to the samples' estimate of what the input lights add (no ray is spent on them), so that the "
+                    "irradiance correction does not darken the image as it trusts that estimate"});
   visit(shadows.correctIrradiance,
         SettingInfo{"shadow-correct-irradiance",
                     "scale the shadowed indirect light by the weighed samples' filtered mean weight, an unbiased "

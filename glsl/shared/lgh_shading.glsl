@@ -37,6 +37,16 @@ vec3 lightContribution(vec3 lightPos, vec3 intensity, vec3 meanNormal, float omn
   return intensity * (cosine * emissionLobe(meanNormal, omniFraction, -w) / distanceSq);
 }
 
+// What light `light` adds at x per unit of its luminance: cosine, emission lobe, clamped 1 / d^2 (the
+// geometric factor G of docs/design.md §5; 0 for a light without luminance).
+float geometricFactor(ShadedLight light, vec3 x, vec3 n, float clampDistance) {
+  float a = luminance(light.intensity);
+  if (!(a > 0.0)) return 0.0;
+  return luminance(lightContribution(light.position, light.intensity, light.meanNormal, light.omniFraction, x, n,
+                                     clampDistance)) /
+         a;
+}
+
 // The shadow-sample selection's importance of a light at distance d whose blended contribution at x
 // is `contribution` (docs/design.md §5, "Defensive selection"): its luminance plus `defensive` x what
 // it would add without the cosines at x and at the light. A grid light stands for input lights spread

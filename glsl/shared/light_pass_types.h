@@ -12,6 +12,10 @@ GPU_CONST uint kMaxInterleave = 8u;      // n x n interleaved sampling: n <= 8
 
 GPU_CONST uint kSelectSkipFinest = 1u;  // the finest level blended takes no part (the paper skips S1)
 GPU_CONST uint kSelectUniform = 2u;     // every contributing light equally likely (for comparison)
+// Grid lights that reach a pixel but cannot be selected there add what one of their drawn lights adds to
+// the pixel's unselectable total (ShadowSettings::countsUnselectable; docs/design.md §5).
+GPU_CONST uint kSelectCountUnselectable = 4u;
+GPU_CONST uint kSelectBlendTargets = 8u;  // ... each drawn light blended by its own distance (shadow-blend-targets)
 
 // A selected light in a shadow slot: bit 31 set for an S0 light (index into the input lights),
 // clear for a grid light (index into the merged grid-light buffer). kNoLight: slot still empty.
@@ -53,8 +57,10 @@ GPU_STRUCT(LightPassUniforms) {
   uint tileRotation;  // added to a light's index before dealing it to a tile: rotated per frame
                       // while accumulating, so n^2 frames give every pixel every light once
 
-  float defensive;  // a grid light's selection importance adds defensive x its cosine-free contribution
-  uint pad0, pad1, pad2;
+  float defensive;    // a grid light's selection importance adds defensive x its cosine-free contribution
+  uint drawnTargets;  // m input lights drawn per grid light this frame (ShadowTargets), read with
+                      // kSelectCountUnselectable
+  uint pad0, pad1;
 
   // levelOffsets[l / 4][l % 4]: index of level l's first light in the merged grid-light buffer
   // (S0: 0), for dealing each level's lights evenly to the tiles
@@ -65,6 +71,7 @@ GPU_CHECK_OFFSET(LightPassUniforms, tilesPerAxis, 32);
 GPU_CHECK_OFFSET(LightPassUniforms, imageWidth, 48);
 GPU_CHECK_OFFSET(LightPassUniforms, shadowSamples, 64);
 GPU_CHECK_OFFSET(LightPassUniforms, defensive, 80);
+GPU_CHECK_OFFSET(LightPassUniforms, drawnTargets, 84);
 GPU_CHECK_OFFSET(LightPassUniforms, levelOffsets, 96);
 GPU_CHECK_SIZE(LightPassUniforms, 160);
 

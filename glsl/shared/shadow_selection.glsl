@@ -19,6 +19,17 @@
 
 layout(std430, binding = LGH_BINDING_PASS1) coherent buffer ShadowTotals { float shadowTotals[]; };
 layout(std430, binding = LGH_BINDING_PASS2) coherent buffer ShadowSlots { uint shadowSlots[]; };
+// What grid lights that reach the pixel but cannot be selected there add (luminance, on the scale of F):
+// completes the samples' estimate of the unshadowed sum (shadow_rays.comp, T).
+layout(std430, binding = LGH_BINDING_PASS3) coherent buffer ShadowUnselectable { float shadowUnselectable[]; };
+
+void addUnselectable(uint pixelIndex, float added) {
+#ifdef LGH_SELECTION_NO_ATOMICS
+  shadowUnselectable[pixelIndex] += added;
+#else
+  atomicAdd(shadowUnselectable[pixelIndex], added);
+#endif
+}
 
 void selectShadowSample(uint pixelIndex, uint lightId, float importance, uint k, uint frameSeed) {
   if (importance <= 0.0 || k == 0u) return;

@@ -41,6 +41,7 @@ void ShadowSlots::allocate(glm::ivec2 targetSize, int samples) {
                                 std::to_string(gpu::kMaxShadowSamples) + ")");
   const size_t pixels = size_t(targetSize.x) * size_t(targetSize.y);
   gl::ensureSize(totals, std::max<size_t>(pixels, 1) * sizeof(float));
+  gl::ensureSize(unselectable, std::max<size_t>(pixels, 1) * sizeof(float));
   gl::ensureSize(slots, std::max<size_t>(pixels * size_t(std::max(samples, 1)), 1) * sizeof(GLuint));
   k = samples;
   size = targetSize;
@@ -88,17 +89,28 @@ void LightVolumePass::checkTarget(const LightPassOptions& options, const LightPa
                                 std::to_string(gpu::kMaxLightPassLevels - 1) + " supported");
 }
 
+// The unselectable grid lights are counted through the drawn targets when the settings ask for it, there
+// are grid lights and targets, and the input lights fit one storage block (the fragments read any of them).
+unsigned LightVolumePass::unselectableTargets(const LightPassOptions& options, size_t lightCount, int L,
+                                              const ShadowTargets* drawnTargets) const {
+  const bool counts = options.shadows.countsUnselectable() && !options.pass.bruteForce && L >= 1 && drawnTargets &&
+                      drawnTargets->races > 0 && lightCount <= maxBlockLights_;
+  return counts ? drawnTargets->races : 0u;
+}
+
 LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
-                                        const LightPassOptions& options, LightPassTarget& target) {
+                                        const LightPassOptions& options, LightPassTarget& target,
+                                        const ShadowTargets* drawnTargets) {
   // Brute force draws no grid level; an unbuilt hierarchy has none either.
   const int L = options.pass.bruteForce || hierarchy.levels.empty() ? 0 : hierarchy.grid.levels;
   checkTarget(options, target, L);
   LightPassDraws counts;
   const std::vector<Draw> draws = drawList(lights, lightCount, hierarchy, options, L, counts);
-  uploadUniforms(draws, hierarchy, options, target.layout, L);
+  const unsigned m = unselectableTargets(options, lightCount, L, drawnTargets);
+  uploadUniforms(draws, hierarchy, options, target.layout, L, m);
   bindTargets(options, target);
   if (options.pass.volumeCulling) prepareCulling(draws, hierarchy, options, target, L);
-  bindInputs(options, target);
+  bindInputs(options, target, lights, m > 0 ? drawnTargets : nullptr);
   issueDraws(draws, options);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl::checkErrors("light pass");
@@ -142,7 +154,8 @@ std::vector<LightVolumePass::Draw> LightVolumePass::drawList(const gl::Buffer& l
 
 // Per-draw uniforms, all uploaded before the first draw.
 void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy,
-                                     const LightPassOptions& options, const TileLayout& layout, int L) {
+                                     const LightPassOptions& options, const TileLayout& layout, int L,
+                                     unsigned drawnTargets) {
   gl::ensureSize(uniforms_, std::max<size_t>(draws.size(), 1) * uniformStride_);
   std::vector<unsigned char> staging(std::max<size_t>(draws.size(), 1) * uniformStride_, 0);
   const int n = layout.tilesPerAxis;
@@ -167,7 +180,10 @@ void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHi
     u.cullingDepthScale = options.sceneSize;
     u.shadowSamples = unsigned(options.shadows.samples);
     u.selectFlags = (options.shadows.skipFinest ? gpu::kSelectSkipFinest : 0u) |
-                    (options.shadows.uniform ? gpu::kSelectUniform : 0u);
+                    (options.shadows.uniform ? gpu::kSelectUniform : 0u) |
+                    (drawnTargets > 0 ? gpu::kSelectCountUnselectable : 0u) |
+                    (options.shadows.blendTargets ? gpu::kSelectBlendTargets : 0u);
+    u.drawnTargets = drawnTargets;
     u.frameSeed = options.frameSeed;
     u.tileRotation = options.tileRotation % unsigned(n * n);
     u.defensive = options.shadows.selectionDefensive();
@@ -191,6 +207,7 @@ void LightVolumePass::bindTargets(const LightPassOptions& options, LightPassTarg
   if (options.pass.overdraw) target.fragmentCounts->clearUint(0);
   if (options.shadows.samples > 0) {
     target.shadowSlots->totals.clear();
+    target.shadowSlots->unselectable.clear();
     target.shadowSlots->slots.clearUint(gpu::kNoLight);
   }
 }
@@ -207,11 +224,18 @@ void LightVolumePass::prepareCulling(const std::vector<Draw>& draws, const GpuHi
 
 // What the light volumes read and write besides the framebuffer; after the culling preparation, which
 // uses image units, textures and storage bindings of its own.
-void LightVolumePass::bindInputs(const LightPassOptions& options, LightPassTarget& target) {
+void LightVolumePass::bindInputs(const LightPassOptions& options, LightPassTarget& target, const gl::Buffer& lights,
+                                 const ShadowTargets* drawnTargets) {
   if (options.pass.overdraw) target.fragmentCounts->bindImage(LGH_IMAGE_FRAGMENT_COUNTS, GL_READ_WRITE);
   if (options.shadows.samples > 0) {
     target.shadowSlots->totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
     target.shadowSlots->slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+    target.shadowSlots->unselectable.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+    // Blocks the shader declares are bound whether or not it reads them (the totals stand in); the input
+    // lights only when they fit one block (unselectableTargets).
+    (drawnTargets ? drawnTargets->targets : target.shadowSlots->totals)
+        .bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
+    (drawnTargets ? lights : target.shadowSlots->totals).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);
   }
   target.position.bindTexture(LGH_TEXTURE_SURFACE_POSITION);
   target.normal.bindTexture(LGH_TEXTURE_SURFACE_NORMAL);

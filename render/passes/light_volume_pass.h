@@ -10,9 +10,10 @@
 // the far faces of an icosahedron around it, each at its own depth. Only zero-weight fragments go: the image and the
 // shadow selection are the same, only cheaper.
 //   in:  surfaces (G-buffer position and normal, or their interleaved tiles), the input lights S0
-//        and the hierarchy built over them, frame uniforms (LGH_UBO_FRAME)
+//        and the hierarchy built over them, frame uniforms (LGH_UBO_FRAME); with shadow selection, this
+//        frame's drawn shadow-ray targets (for the grid lights that cannot be selected at a pixel)
 //   out: irradiance (rgb: W/m^2, albedo / pi gives radiance; a: fragments that shaded the pixel),
-//        optionally the count of every fragment rasterized per pixel (overdraw)
+//        optionally the count of every fragment rasterized per pixel (overdraw), and the shadow slots
 // Brute force draws every S0 light full-screen with weight 1: the unshadowed exact sum, rasterized.
 
 #include <map>
@@ -23,6 +24,7 @@
 #include "render/gl/texture.h"
 #include "render/passes/interleave_pass.h"
 #include "render/passes/lgh_build_pass.h"
+#include "render/passes/shadow_targets_pass.h"
 #include "render/passes/volume_culling.h"
 #include "render/settings.h"
 
@@ -41,10 +43,12 @@ struct LightPassOptions {
   unsigned tileRotation = 0;  // n x n interleaving: lights are dealt to tile (index + rotation) mod n^2
 };
 
-// Per pixel of the light pass's target: the running importance total and k selected lights.
+// Per pixel of the light pass's target: the running importance total, k selected lights, and what the
+// grid lights that cannot be selected there add.
 struct ShadowSlots {
-  gl::Buffer totals;  // float per pixel
-  gl::Buffer slots;   // uint per pixel and slot: gpu::kSlotS0 | S0 index, grid-light index, or kNoLight
+  gl::Buffer totals;        // float per pixel
+  gl::Buffer slots;         // uint per pixel and slot: gpu::kSlotS0 | S0 index, grid-light index, or kNoLight
+  gl::Buffer unselectable;  // float per pixel: luminance, on the totals' scale (ShadowSettings::countsUnselectable)
   int k = 0;
   glm::ivec2 size{0};  // the target's size (tiled when interleaving)
   void allocate(glm::ivec2 targetSize, int samples);
@@ -70,20 +74,26 @@ class LightVolumePass {
   // floatAtomics: GL_NV_shader_atomic_float is available (the selection's running total uses it).
   explicit LightVolumePass(bool floatAtomics);
 
+  // drawnTargets: this frame's shadow-ray targets, required when options.shadows.countsUnselectable().
   LightPassDraws execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
-                         const LightPassOptions& options, LightPassTarget& target);
+                         const LightPassOptions& options, LightPassTarget& target,
+                         const ShadowTargets* drawnTargets = nullptr);
 
  private:
   struct Draw;
   static void checkTarget(const LightPassOptions& options, const LightPassTarget& target, int levels);
+  // m when the pass counts the unselectable grid lights through the drawn targets, else 0.
+  unsigned unselectableTargets(const LightPassOptions& options, size_t lightCount, int levels,
+                               const ShadowTargets* drawnTargets) const;
   std::vector<Draw> drawList(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
                              const LightPassOptions& options, int levels, LightPassDraws& counts) const;
   void uploadUniforms(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy, const LightPassOptions& options,
-                      const TileLayout& layout, int levels);
+                      const TileLayout& layout, int levels, unsigned drawnTargets);
   void bindTargets(const LightPassOptions& options, LightPassTarget& target);
   void prepareCulling(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy, const LightPassOptions& options,
                       const LightPassTarget& target, int levels);
-  void bindInputs(const LightPassOptions& options, LightPassTarget& target);
+  void bindInputs(const LightPassOptions& options, LightPassTarget& target, const gl::Buffer& lights,
+                  const ShadowTargets* drawnTargets);
   void issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options);
   const gl::Program& program(const Draw& draw, const LightPassOptions& options);
 

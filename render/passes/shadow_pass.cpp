@@ -18,6 +18,7 @@ void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const
   inputLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   slots.totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   slots.slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  slots.unselectable.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);
   lightPassIrradiance.bindTexture(LGH_TEXTURE_SHADOW_IRRADIANCE);
   // A buffer must be bound even when there is no hierarchy (brute force): the input lights stand in.
   (hierarchy.gridLights ? hierarchy.gridLights : inputLights).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);

@@ -1,7 +1,8 @@
 // Shadow rays to real input lights (render/passes/shadow_targets_pass, glsl/shadow_targets.comp):
 // the input light drawn for a grid light follows its share of the grid light's importance (chi-square
 // against lgh::ClusterSources, gathered and scattered levels), and a pixel whose lights are half
-// behind a wall gets, averaged over frames, the exact share-weighted visibility of its selection.
+// behind a wall gets, averaged over frames, the exact share-weighted visibility of its selection; and
+// the samples' estimate of the unshadowed sum counts the grid lights the selection cannot reach.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -152,8 +153,10 @@ std::filesystem::path writeWallScene(const TempDir& dir, std::vector<glm::vec3>&
 struct ExpectedRatios {
   double byShare, byContribution, weighted, blended, exact;
   // Unshadowed luminance: what the selectable grid lights' input lights add (blend a_g sum_i share_i G_i,
-  // and blended by their own distance), and what all input lights add (sum_i a_i G_i).
-  double weightedTotal, blendedTotal, exactTotal;
+  // and blended by their own distance), what all input lights add (sum_i a_i G_i), and the same two sums
+  // over every grid light whose volume covers x, selectable or not: what the samples' T estimates when
+  // the light pass counts the unselectable ones (shadow-count-unselectable).
+  double weightedTotal, blendedTotal, exactTotal, reachableWeightedTotal, reachableBlendedTotal;
 };
 ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>& lights, const glm::dvec3& x,
                               const glm::dvec3& n, double wallX, const RenderSettings& settings, float clampDistance) {
@@ -170,6 +173,7 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
     double visible = 0, total = 0;
     double ratio() const { return visible / total; }
   } byShare, byContribution, weighted, blended, exact;
+  double reachableWeighted = 0, reachableBlended = 0;
   for (int level = std::max(first, 1) + (settings.shadows.skipFinest ? 1 : 0); level <= levels; ++level) {
     const std::vector<size_t> cpuIndex = cpuIndexOfGpuLights(gpu, cpu, level);
     const std::vector<gpu::GpuGridLight> gpuLevel = gpu.downloadLevel(level);
@@ -182,8 +186,6 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
       const double f =
           blend * luminance(lightContribution(glm::dvec3(light.position), glm::dvec3(light.intensity),
                                               glm::dvec3(light.meanNormal), light.omniFraction, x, &n, clampDistance));
-      // Selectable: a positive importance (with the defensive share, any grid light blended here).
-      if (!(f > 0) && !(settings.shadows.selectionDefensive() > 0 && blend > 0)) continue;
       Sum shareSum, contributionSum, blendedSum;
       for (const LightShare& s : clusters.shares(level, cpuIndex[g])) {
         const Light& l = lights[s.light];
@@ -193,10 +195,16 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
         const double own = blendWeight(role, glm::distance(glm::dvec3(l.position), x), radius) * geometric(l);
         blendedSum.visible += s.share * own * v, blendedSum.total += s.share * own;
       }
+      const double a = luminance(glm::dvec3(light.intensity));
+      if (role == LevelRole::Top || role == LevelRole::Only || d < 2.0 * radius) {
+        reachableWeighted += blend * a * contributionSum.total;
+        reachableBlended += a * blendedSum.total;
+      }
+      // Selectable: a positive importance (with the defensive share, any grid light blended here).
+      if (!(f > 0) && !(settings.shadows.selectionDefensive() > 0 && blend > 0)) continue;
       if (!(contributionSum.total > 0)) continue;
       byShare.visible += f * shareSum.ratio(), byShare.total += f;
       byContribution.visible += f * contributionSum.ratio(), byContribution.total += f;
-      const double a = luminance(glm::dvec3(light.intensity));
       weighted.visible += blend * a * contributionSum.visible, weighted.total += blend * a * contributionSum.total;
       blended.visible += a * blendedSum.visible, blended.total += a * blendedSum.total;
     }
@@ -205,8 +213,21 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
     const double c = luminance(glm::dvec3(l.intensity)) * geometric(l);
     exact.visible += visibleFromX(l) ? c : 0.0, exact.total += c;
   }
-  return {byShare.ratio(), byContribution.ratio(), weighted.ratio(), blended.ratio(),
-          exact.ratio(),   weighted.total,         blended.total,    exact.total};
+  return {byShare.ratio(), byContribution.ratio(), weighted.ratio(), blended.ratio(),   exact.ratio(),
+          weighted.total,  blended.total,          exact.total,      reachableWeighted, reachableBlended};
+}
+
+// 24 x 24, the scene's point lights as S0 (no VPLs, no emitters), 3 levels, alpha 2, the raw ratio.
+RenderSettings pointLightSettings() {
+  RenderSettings settings;
+  settings.image.width = settings.image.height = 24;
+  settings.inputLights.maxDirectLights = 0;
+  settings.inputLights.vpls = 0;
+  settings.inputLights.emitterSamples = 0;
+  settings.hierarchy.levels = 3;
+  settings.lightPass.alpha = 2.0f;
+  settings.filter.passes = 0;
+  return settings;
 }
 
 TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
@@ -214,14 +235,7 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
   std::vector<glm::vec3> placed;
   const Scene scene = loadScene(writeWallScene(dir, placed));
   const SceneGpu gpuScene(scene);
-  RenderSettings settings;
-  settings.image.width = settings.image.height = 24;
-  settings.inputLights.maxDirectLights = 0;  // the point lights are S0
-  settings.inputLights.vpls = 0;
-  settings.inputLights.emitterSamples = 0;
-  settings.hierarchy.levels = 3;
-  settings.lightPass.alpha = 2.0f;
-  settings.filter.passes = 0;
+  RenderSettings settings = pointLightSettings();
   // Drawn lights as they are: the importance-weighted visibility, exactly; resampled at the pixel: the
   // contribution-weighted visibility, in the limit of many drawn lights (16 here; a bias for finite m);
   // resampled and weighed: the visibility weighted by what each grid light's input lights add, exactly
@@ -320,21 +334,108 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
       const double weightError = std::sqrt(std::max(squares - meanWeight * meanWeight, 0.0) / (frames - 1));
       std::printf(
           "  %s: LGH irradiance %.4f, x mean weight %.4f +- %.4f; what the input lights add %.4f "
-          "(through the blending), %.4f (blended by their own distance), %.4f (exact)\n",
+          "(through the blending), %.4f (blended by their own distance; %.4f with the unselectable grid lights), "
+          "%.4f (exact)\n",
           label.c_str(), lghIrradiance, lghIrradiance * meanWeight, lghIrradiance * weightError, expected.weightedTotal,
-          expected.blendedTotal, expected.exactTotal);
+          expected.blendedTotal, expected.reachableBlendedTotal, expected.exactTotal);
       const bool blended = mode.target == Target::blended;
-      const double total = blended ? expected.blendedTotal : expected.weightedTotal;
+      // The light pass counts the unselectable grid lights (shadow-count-unselectable), so T estimates what
+      // the lights of every grid light whose volume covers x add.
+      const double total = blended ? expected.reachableBlendedTotal : expected.reachableWeightedTotal;
       const double tolerance = lghIrradiance * 4.0 * weightError + 2e-3 * total;
       if (!blended) {  // blended, the weights are heavier (B_l at a fringe light over B_l at its centre)
         EXPECT_GT(std::abs(lghIrradiance - total), tolerance);
       }
       EXPECT_NEAR(lghIrradiance * meanWeight, total, tolerance);
       // Blended by their own distance, the input lights add what they add exactly, but for the grid
-      // lights that hold a light near x and are not selectable there (their centre outside the blend).
-      EXPECT_LT(std::abs(expected.blendedTotal - expected.exactTotal),
+      // lights that hold a light near x and whose volume does not reach it.
+      EXPECT_LT(std::abs(expected.reachableBlendedTotal - expected.exactTotal),
                 0.2 * std::abs(expected.weightedTotal - expected.exactTotal));
     }
+  }
+}
+
+// A floor at y = 0 seen from above, and point lights (S0) that straddle it: dim ones just above, bright
+// ones below. Their clusters' centres lie below the floor, so grid lights whose lights above it light the
+// floor cannot be selected there (their centre's cosine is 0).
+std::filesystem::path writeStraddlingScene(const TempDir& dir) {
+  GltfWriter w;
+  const int grey = w.addMaterial(MaterialDesc{}.withBaseColor({0.5f, 0.5f, 0.5f, 1}));
+  w.addNode(NodeDesc{}.withMesh(w.addMesh({quad({-2, 0, 2}, {4, 0, 0}, {0, 0, -4}, grey)})));
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int i = 0; i < 40; ++i) {
+    const bool above = i % 2 == 0;
+    const glm::vec3 p(1.6f * (u(rng) - 0.5f), above ? 0.05f + 0.3f * u(rng) : -0.35f - 0.35f * u(rng),
+                      1.6f * (u(rng) - 0.5f));
+    w.addNode(NodeDesc{}.withLight(w.addLight(LightDesc{}.withIntensity(above ? 1.0 : 3.0))).translated(p));
+  }
+  w.addNode(NodeDesc{}
+                .withCamera(w.addCamera(CameraDesc{}.named("top").withYfov(1.0).withClip(0.1, 100)))
+                .translated({0, 4, 0})
+                .rotated(glm::angleAxis(glm::radians(-90.0f), glm::vec3(1, 0, 0))));
+  return w.write(dir / "straddling.gltf");
+}
+
+// The samples' estimate of the unshadowed sum, T = F' mean(w) + U (shadow_rays.comp), averaged over frames
+// at the floor pixel where the most light comes from grid lights the selection cannot reach: with the
+// light pass counting those (U), the CPU's sum over every grid light whose volume covers x; without, only
+// the selectable ones' sum, short of it by more than the test's error (so the test can fail).
+TEST_F(ShadowTargetsTest, UnselectableGridLightsCompleteTheUnshadowedSum) {
+  TempDir dir;
+  const Scene scene = loadScene(writeStraddlingScene(dir));
+  const SceneGpu gpuScene(scene);
+  RenderSettings settings = pointLightSettings();
+  for (const bool counted : {true, false}) {
+    SCOPED_TRACE(counted ? "counted" : "not counted");
+    settings.shadows.countUnselectable = counted;
+    Renderer renderer(gpuScene, settings);
+    const CameraView view = makeCameraView(resolveCamera(scene, settings), 24, 24);
+    renderer.render(view);
+    const std::vector<Light> lights =
+        fromGpuLights(renderer.inputLights().lights.download<gpu::GpuLight>(renderer.inputLights().count));
+    // The floor pixel (of those with at least a tenth of the brightest one's light) where the selectable
+    // grid lights' lights add the smallest share of what every covering grid light's lights add.
+    const ImageRGBA position = renderer.readImage(Aov::Position);
+    size_t pixel = SIZE_MAX;
+    ExpectedRatios expected{};
+    std::vector<ExpectedRatios> perPixel(position.pixels.size());
+    double brightest = 0;
+    for (size_t i = 0; i < position.pixels.size(); ++i) {
+      if (!(position.pixels[i].w > 0)) continue;
+      perPixel[i] = expectedRatios(renderer.hierarchy(), lights, glm::dvec3(glm::vec3(position.pixels[i])),
+                                   glm::dvec3(0, 1, 0), 1e9, settings, renderer.clampDistance());
+      brightest = std::max(brightest, perPixel[i].reachableBlendedTotal);
+    }
+    for (size_t i = 0; i < position.pixels.size(); ++i) {
+      const ExpectedRatios& e = perPixel[i];
+      if (!(e.reachableBlendedTotal > 0.1 * brightest)) continue;
+      if (pixel == SIZE_MAX ||
+          e.blendedTotal * expected.reachableBlendedTotal < expected.blendedTotal * e.reachableBlendedTotal)
+        pixel = i, expected = e;
+    }
+    ASSERT_NE(pixel, SIZE_MAX);
+    // The scene does what it is for: a good part of the light at that pixel comes through unselectable grid
+    // lights.
+    ASSERT_LT(expected.blendedTotal, 0.75 * expected.reachableBlendedTotal);
+    const int frames = 200;
+    double sum = 0, squares = 0;
+    for (int f = 0; f < frames; ++f) {
+      if (f > 0) renderer.render(view);
+      const std::vector<glm::vec4> raw = renderer.texture(Aov::Ratio).readRGBA();  // b: T; rows bottom-up
+      const double t = raw[(position.height - 1 - pixel / position.width) * position.width + pixel % position.width].z;
+      sum += t, squares += t * t;
+    }
+    const double mean = sum / frames;
+    const double standardError = std::sqrt(std::max(squares / frames - mean * mean, 0.0) / (frames - 1));
+    std::printf(
+        "  %s: T %.4f +- %.4f over %d frames; the selectable grid lights' lights add %.4f, every covering "
+        "grid light's %.4f, the input lights %.4f\n",
+        counted ? "counted" : "not counted", mean, standardError, frames, expected.blendedTotal,
+        expected.reachableBlendedTotal, expected.exactTotal);
+    const double tolerance = 4.0 * standardError + 0.02 * expected.reachableBlendedTotal;
+    EXPECT_NEAR(mean, counted ? expected.reachableBlendedTotal : expected.blendedTotal, tolerance);
+    EXPECT_GT(std::abs(expected.reachableBlendedTotal - expected.blendedTotal), tolerance);
   }
 }
 
