@@ -74,7 +74,8 @@ class LightVolumePass {
   // floatAtomics: GL_NV_shader_atomic_float is available (the selection's running total uses it).
   explicit LightVolumePass(bool floatAtomics);
 
-  // drawnTargets: this frame's shadow-ray targets, required when options.shadows.countsUnselectable().
+  // drawnTargets: this frame's shadow-ray targets, through which the pass counts the grid lights it cannot
+  // select (options.shadows.countsUnselectable(); null, or input lights beyond one storage block: not counted).
   LightPassDraws execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
                          const LightPassOptions& options, LightPassTarget& target,
                          const ShadowTargets* drawnTargets = nullptr);
