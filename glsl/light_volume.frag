@@ -36,9 +36,10 @@ flat in vec2 lightBlend;
 flat in uint lightId;  // kSlotS0 | S0 index, or merged grid-light index
 flat in vec3 lightVariance;
 
-#ifdef LGH_SELECT_SHADOWS
+#ifdef LGH_COUNT_UNSELECTABLE
 // This frame's drawn lights of every grid light (ShadowTargets: pass.drawnTargets per grid light) and the
-// input lights they index, read with kSelectCountUnselectable.
+// input lights they index. (A variant of its own: llvmpipe runs both sides of a branch under a mask, so
+// this code would cost every fragment whether or not the counting is on.)
 layout(std430, binding = LGH_BINDING_PASS4) readonly buffer DrawnTargets { uint drawnTargets[]; };
 layout(std430, binding = LGH_BINDING_PASS5) readonly buffer InputLights { GpuLight inputLights[]; };
 
@@ -54,7 +55,6 @@ layout(std430, binding = LGH_BINDING_PASS5) readonly buffer InputLights { GpuLig
 // their light takes the pixel's visibility ratio. Skipped where the lights within two standard deviations
 // of the centre cannot light x either (all in the hole, all behind the plane, or all facing away).
 void countUnselectable(uint pixelIndex, vec3 x, vec3 n, float d, uint role, float R, float centreBlend) {
-  if ((pass.selectFlags & kSelectCountUnselectable) == 0u || (lightId & kSlotS0) != 0u) return;
   vec3 variance = lightVariance;
   if (centreBlend == 0.0 && d + 2.0 * sqrt(variance.x + variance.y + variance.z) <= 0.5 * R) return;
   if (dot(n, lightPosition - x) <= -2.0 * sqrt(dot(n * n, variance))) return;
@@ -86,13 +86,13 @@ void main() {
   uint role = uint(lightBlend.y);
   float R = lightBlend.x;
   float blend = blendWeight(role, d, R);
-#ifdef LGH_SELECT_SHADOWS
-  uint pixelIndex = uint(pixel.y) * (pass.tilesPerAxis * pass.tileWidth) + uint(pixel.x);
-  bool fadesIn = role == kRoleMiddle || role == kRoleTop;
-  if (blend == 0.0 && fadesIn && d <= 0.5 * R)  // in the fade-in hole (not beyond 2R: the volume's corners)
-    countUnselectable(pixelIndex, position.xyz, texelFetch(surfaceNormal, pixel, 0).xyz, d, role, R, 0.0);
-#endif
+#ifdef LGH_COUNT_UNSELECTABLE
+  // In a fade-in hole the grid light adds nothing here, but its lights beyond the hole's edge may: counted below.
+  bool inHole = (role == kRoleMiddle || role == kRoleTop) && d <= 0.5 * R;
+  if (blend == 0.0 && !inHole) discard;
+#else
   if (blend == 0.0) discard;
+#endif
   vec3 n = texelFetch(surfaceNormal, pixel, 0).xyz;
   vec3 e =
       lightContribution(lightPosition, lightIntensity, lightLobe.xyz, lightLobe.w, position.xyz, n, pass.clampDistance);
@@ -104,10 +104,15 @@ void main() {
     float importance = selectionImportance(irradiance.rgb, lightIntensity, blend, d, pass.clampDistance,
                                            gridLight ? pass.defensive : 0.0);
     if ((pass.selectFlags & kSelectUniform) != 0u && importance > 0.0) importance = 1.0;
-    if (importance > 0.0)
-      selectShadowSample(pixelIndex, lightId, importance, pass.shadowSamples, pass.frameSeed);
+    uint pixelIndex = uint(pixel.y) * (pass.tilesPerAxis * pass.tileWidth) + uint(pixel.x);
+    if (importance > 0.0) selectShadowSample(pixelIndex, lightId, importance, pass.shadowSamples, pass.frameSeed);
+#ifdef LGH_COUNT_UNSELECTABLE
     else
       countUnselectable(pixelIndex, position.xyz, n, d, role, R, blend);
+#endif
   }
+#endif
+#ifdef LGH_COUNT_UNSELECTABLE
+  if (blend == 0.0) discard;  // in the hole: counted, nothing to add to the irradiance
 #endif
 }

@@ -79,7 +79,7 @@ struct ShadowSettings {
   // targets have heavy weights to bound (the paper's jittered centres are weighed by the centre alone).
   float selectionDefensive() const { return targets > 0 && weighTargets ? defensive : 0.0f; }
 
-  // Whether the light pass counts what unselectable grid lights add (kSelectCountUnselectable): only the
+  // Whether the light pass counts what unselectable grid lights add (LGH_COUNT_UNSELECTABLE): only the
   // weighed samples' T estimates the input lights' sum, and only when every level is selected by
   // contribution is it that sum's (with the finest level skipped or uniform selection T is not).
   bool countsUnselectable() const {

@@ -12,10 +12,9 @@ GPU_CONST uint kMaxInterleave = 8u;      // n x n interleaved sampling: n <= 8
 
 GPU_CONST uint kSelectSkipFinest = 1u;  // the finest level blended takes no part (the paper skips S1)
 GPU_CONST uint kSelectUniform = 2u;     // every contributing light equally likely (for comparison)
-// Grid lights that reach a pixel but cannot be selected there add what one of their drawn lights adds to
-// the pixel's unselectable total (ShadowSettings::countsUnselectable; docs/design.md §5).
-GPU_CONST uint kSelectCountUnselectable = 4u;
-GPU_CONST uint kSelectBlendTargets = 8u;  // ... each drawn light blended by its own distance (shadow-blend-targets)
+// Counting the grid lights a pixel cannot select (light_volume.frag, LGH_COUNT_UNSELECTABLE), each drawn
+// light blended by its own distance (shadow-blend-targets), not by its grid light's centre's.
+GPU_CONST uint kSelectBlendTargets = 4u;
 
 // A selected light in a shadow slot: bit 31 set for an S0 light (index into the input lights),
 // clear for a grid light (index into the merged grid-light buffer). kNoLight: slot still empty.
@@ -58,8 +57,8 @@ GPU_STRUCT(LightPassUniforms) {
                       // while accumulating, so n^2 frames give every pixel every light once
 
   float defensive;    // a grid light's selection importance adds defensive x its cosine-free contribution
-  uint drawnTargets;  // m input lights drawn per grid light this frame (ShadowTargets), read with
-                      // kSelectCountUnselectable
+  uint drawnTargets;  // m input lights drawn per grid light this frame (ShadowTargets), read when the
+                      // unselectable grid lights are counted
   uint pad0, pad1;
 
   // levelOffsets[l / 4][l % 4]: index of level l's first light in the merged grid-light buffer

@@ -58,7 +58,7 @@ LightVolumePass::LightVolumePass(bool floatAtomics) : floatAtomics_(floatAtomics
   gl::checkErrors("light pass setup");
 }
 
-const gl::Program& LightVolumePass::program(const Draw& draw, const LightPassOptions& options) {
+const gl::Program& LightVolumePass::program(const Draw& draw, const LightPassOptions& options, bool countUnselectable) {
   gl::Defines defines;
   if (draw.s0Input) defines.emplace_back("LGH_S0_INPUT", "1");
   if (draw.shape == gpu::kVolumeCulled) defines.emplace_back("LGH_DEPTH_CULLED", "1");
@@ -67,6 +67,7 @@ const gl::Program& LightVolumePass::program(const Draw& draw, const LightPassOpt
   if (options.shadows.samples > 0) {
     defines.emplace_back("LGH_SELECT_SHADOWS", "1");
     if (!floatAtomics_) defines.emplace_back("LGH_SELECTION_NO_ATOMICS", "1");
+    if (countUnselectable && !draw.s0Input) defines.emplace_back("LGH_COUNT_UNSELECTABLE", "1");
   }
   std::string key;
   for (const auto& d : defines) key += d.first + ";";
@@ -111,7 +112,7 @@ LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCo
   bindTargets(options, target);
   if (options.pass.volumeCulling) prepareCulling(draws, hierarchy, options, target, L);
   bindInputs(options, target, lights, m > 0 ? drawnTargets : nullptr);
-  issueDraws(draws, options);
+  issueDraws(draws, options, m > 0);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl::checkErrors("light pass");
   return counts;
@@ -181,7 +182,6 @@ void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHi
     u.shadowSamples = unsigned(options.shadows.samples);
     u.selectFlags = (options.shadows.skipFinest ? gpu::kSelectSkipFinest : 0u) |
                     (options.shadows.uniform ? gpu::kSelectUniform : 0u) |
-                    (drawnTargets > 0 ? gpu::kSelectCountUnselectable : 0u) |
                     (options.shadows.blendTargets ? gpu::kSelectBlendTargets : 0u);
     u.drawnTargets = drawnTargets;
     u.frameSeed = options.frameSeed;
@@ -231,11 +231,10 @@ void LightVolumePass::bindInputs(const LightPassOptions& options, LightPassTarge
     target.shadowSlots->totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
     target.shadowSlots->slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
     target.shadowSlots->unselectable.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
-    // Blocks the shader declares are bound whether or not it reads them (the totals stand in); the input
-    // lights only when they fit one block (unselectableTargets).
-    (drawnTargets ? drawnTargets->targets : target.shadowSlots->totals)
-        .bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
-    (drawnTargets ? lights : target.shadowSlots->totals).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);
+    if (drawnTargets) {  // counting the unselectable grid lights (the input lights fit one block)
+      drawnTargets->targets.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
+      lights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);
+    }
   }
   target.position.bindTexture(LGH_TEXTURE_SURFACE_POSITION);
   target.normal.bindTexture(LGH_TEXTURE_SURFACE_NORMAL);
@@ -247,7 +246,8 @@ void LightVolumePass::bindInputs(const LightPassOptions& options, LightPassTarge
 // pass the depth test only where the surface is not behind the volume (LEQUAL: volumeDepth is reversed)
 // and, sorted by slice, the stencil test only where it is not in front of the sphere's slice. Depth in
 // GL_ZERO_TO_ONE (shared/light_levels.h, volumeDepth); cubes and the full-screen triangle sit at z = 0.
-void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options) {
+void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options,
+                                 bool countUnselectable) {
   glDepthMask(GL_FALSE);
   glDepthFunc(GL_LEQUAL);
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
@@ -262,7 +262,7 @@ void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPass
     const size_t stride = d.s0Input ? sizeof(gpu::GpuLight) : sizeof(gpu::GpuGridLight);
     d.buffer->bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, d.boundOffset * stride, d.boundLights * stride);
     uniforms_.bindRange(GL_UNIFORM_BUFFER, LGH_UBO_PASS, i * uniformStride_, sizeof(gpu::LightPassUniforms));
-    program(d, options).use();
+    program(d, options, countUnselectable).use();
     if (d.shape == gpu::kVolumeCube)
       glEnable(GL_CULL_FACE);
     else

@@ -95,8 +95,8 @@ class LightVolumePass {
                       const LightPassTarget& target, int levels);
   void bindInputs(const LightPassOptions& options, LightPassTarget& target, const gl::Buffer& lights,
                   const ShadowTargets* drawnTargets);
-  void issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options);
-  const gl::Program& program(const Draw& draw, const LightPassOptions& options);
+  void issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options, bool countUnselectable);
+  const gl::Program& program(const Draw& draw, const LightPassOptions& options, bool countUnselectable);
 
   bool floatAtomics_;
   std::map<std::string, gl::Program> programs_;  // by their defines, compiled on first use
