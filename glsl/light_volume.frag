@@ -11,7 +11,6 @@
 #include "shared/lgh_shading.glsl"
 #include "shared/light_pass_types.h"
 #ifdef LGH_SELECT_SHADOWS
-#include "shared/lgh_types.h"
 #include "shared/shadow_selection.glsl"
 #endif
 

@@ -217,6 +217,11 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
           weighted.total,  blended.total,          exact.total,      reachableWeighted, reachableBlended};
 }
 
+// The raw shadow ratio texture (r ratio, g T's variance, b T) at `pixel` of an image of `image`'s size.
+glm::vec4 rawRatio(const Renderer& renderer, const ImageRGBA& image, size_t pixel) {
+  return fromGLRows(image.width, image.height, renderer.texture(Aov::Ratio).readRGBA()).pixels[pixel];
+}
+
 // 24 x 24, the scene's point lights as S0 (no VPLs, no emitters), 3 levels, alpha 2, the raw ratio.
 RenderSettings pointLightSettings() {
   RenderSettings settings;
@@ -297,9 +302,8 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
     std::vector<glm::dvec2> samples;  // (D r, D) per frame
     for (int f = 0; f < frames; ++f) {
       if (f > 0) renderer.render(view);
-      // The raw texture (readImage shows the ratio as grey): r ratio, b weight C D; GL rows are bottom-up.
-      const std::vector<glm::vec4> raw = renderer.texture(Aov::Ratio).readRGBA();
-      const glm::vec4 r = raw[(position.height - 1 - pixel / position.width) * position.width + pixel % position.width];
+      // The raw texture (readImage shows the ratio as grey): r ratio, b weight C D.
+      const glm::vec4 r = rawRatio(renderer, position, pixel);
       if (f == 0) {
         ASSERT_EQ(r.x, renderer.readImage(Aov::Ratio).pixels[pixel].x);
       }
@@ -422,8 +426,7 @@ TEST_F(ShadowTargetsTest, UnselectableGridLightsCompleteTheUnshadowedSum) {
     double sum = 0, squares = 0;
     for (int f = 0; f < frames; ++f) {
       if (f > 0) renderer.render(view);
-      const std::vector<glm::vec4> raw = renderer.texture(Aov::Ratio).readRGBA();  // b: T; rows bottom-up
-      const double t = raw[(position.height - 1 - pixel / position.width) * position.width + pixel % position.width].z;
+      const double t = rawRatio(renderer, position, pixel).z;  // b: T
       sum += t, squares += t * t;
     }
     const double mean = sum / frames;
