@@ -22,7 +22,7 @@ std::unique_ptr<gl::Context> createContext(const std::string& backend) {
 }
 
 void addRenderSettingsOptions(CLI::App& command, RenderSettings& settings, const std::vector<std::string>& own) {
-  addSettingsOptions(command, settings);
+  addSettingsOptions(command, settings, "Render settings");
   for (const std::string& name : own) {
     CLI::Option* option = command.get_option_no_throw("--" + name);
     if (!option) throw std::logic_error("addRenderSettingsOptions: no render setting '" + name + "'");

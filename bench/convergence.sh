@@ -1,10 +1,9 @@
 #!/usr/bin/env bash
 # Error of the shadowed indirect light against k (1, 4, 16; one frame, filtered and raw) and against
-# accumulated still frames (1, 4, 16, 64 at k = 4, filtered), for five shadow modes (`lights`: input lights drawn
-# by share, resampled, weighed and blended by their own distance, the irradiance corrected by the weights as far
-# as their variance allows, the default; `uncorrected`: the same without the correction; `unshrunk`: the
-# correction trusted whatever its variance (prior spread 10); `centres`: uncorrected, blended by their grid light's
-# centre; `paper`: the paper's jittered cluster centres with S1 not selected), on
+# accumulated still frames (1, 4, 16, 64 at k = 4, filtered), for five shadow modes, each an estimator plus
+# ablations (docs/settings.md): `lights`: the converging estimator, the default; `uncorrected`: without the
+# irradiance correction; `unshrunk`: the correction trusted whatever its variance (prior spread 10); `centres`:
+# uncorrected, blended by their grid light's centre; `paper`: the paper's estimator), on
 # sponza_sun@atrium and cornell_emissive at 10K and 100K VPLs, 320x180, alpha 2, S1; plus the
 # unshadowed error of 4x4 interleaving accumulated over 16 frames against 1x1. Writes the sweeps under
 # OUT (default build-convergence/) and the table bench/results/convergence.md (bench/convergence_table.py).
@@ -23,10 +22,12 @@ if [ ! -d "$scenes" ]; then
 fi
 common=(--alpha 2 --start-level 1 --repeats 1 --retries 0 --uniform-lights 16 --uniform-shadowed-lights 2
         --brute-force-limit 0 --images false --cache-dir "$here/build-sweep/reference-cache")
-declare -A modes=([lights]="" [uncorrected]="--set shadow-correct-irradiance=false"
-                  [unshrunk]="--set shadow-correction-lgh-error=10"
-                  [centres]="--set shadow-blend-targets=false --set shadow-correct-irradiance=false"
-                  [paper]="--set shadow-targets=0 --set shadow-skip-finest=true")
+# Each mode is an estimator (--shadow-estimator, resolved by render/shadow_estimator.h) plus ablations.
+declare -A modes=([lights]="--set shadow-estimator=converging"
+                  [uncorrected]="--set shadow-estimator=converging --set shadow-correct-irradiance=false"
+                  [unshrunk]="--set shadow-estimator=converging --set shadow-correction-lgh-error=10"
+                  [centres]="--set shadow-estimator=converging --set shadow-blend-targets=false --set shadow-correct-irradiance=false"
+                  [paper]="--set shadow-estimator=paper")
 declare -A paths=([sponza_sun]="sponza_sun/sponza_sun.gltf@atrium"
                   [cornell_emissive]="cornell_emissive/cornell_emissive.gltf")
 for name in ${SCENES:-sponza_sun cornell_emissive}; do

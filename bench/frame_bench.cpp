@@ -88,8 +88,7 @@ FrameTimes measureFrames(RenderBench& bench, const RenderSettings& settings, con
       if (options.compareTargets) {
         // The same frame again with the paper's shadow-ray targets, for the cost of aiming at input lights.
         RenderSettings paper = s;
-        paper.shadows.targets = 0;
-        paper.shadows.skipFinest = true;
+        paper.shadows.estimator = "paper";
         t.passMs[n][kPaperShadowRays].push_back(bench.renderer().render(paper).passMs(passes::kShadowRays));
       }
     }

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
@@ -29,26 +29,13 @@ constexpr AovName kAovNames[] = {
 // them and changes Sponza's image imperceptibly (0.4 m there).
 constexpr float kDefaultClampFraction = 1e-2f;
 
-// The settings an accumulated history depends on, as text: all but how the image is shown, the
-// fragment counter, the shadow filter (it runs on the accumulated raw values every frame), the camera
-// (moves are reprojected) and the accumulation's own limits.
+// The settings an accumulated history depends on, as text: all but those declared to keep it
+// (SettingInfo::keepsHistory).
 std::string estimateKey(RenderSettings settings) {
-  static const std::set<std::string> independent{"camera",
-                                                 "exposure",
-                                                 "tonemap",
-                                                 "overdraw",
-                                                 "filter-passes",
-                                                 "filter-normal-power",
-                                                 "filter-plane-sigma",
-                                                 "filter-ratio-sigma",
-                                                 "accumulate-max-frames",
-                                                 "accumulate-filter-fade",
-                                                 "shadow-correct-irradiance",  // applied to the history's sums
-                                                 "shadow-correction-lgh-error"};
   std::ostringstream key;
   key.precision(9);
   visitSettings(settings, [&](const auto& value, const SettingInfo& info) {
-    if (!independent.count(info.name)) key << info.name << '=' << value << ';';
+    if (!info.keepsHistory) key << info.name << '=' << value << ';';
   });
   return key.str();
 }
@@ -154,7 +141,7 @@ LghBuildOptions Renderer::buildOptions() const {
 LightPassOptions Renderer::lightPassOptions() const {
   LightPassOptions o;
   o.pass = settings_.lightPass;
-  o.shadows = settings_.shadows;
+  o.shadows = shadowEstimator_;
   o.clampDistance = clampDistance();
   o.sceneSize = std::max(scene_.scene().bounds.diagonal(), 1e-6f);
   o.frameSeed = frameIndex_ * 0x9e3779b9u + unsigned(settings_.inputLights.seed);
@@ -199,14 +186,15 @@ FrameStats Renderer::render(const CameraView& view) {
     // S0 (VPLs, emitter samples, many point lights) and its hierarchy, when out of date.
     stats.lightsRebuilt = updateLights();
     stats.accumulatedFrames = updateAccumulation(stats.lightsRebuilt, view);
+    resolveShadows();
     const LightPassOptions options = lightPassOptions();
     // Each grid light's shadow-ray targets: input lights drawn by their share of its importance (the light
     // pass reads them too, for grid lights it cannot select).
     shadowTargets_.races = 0;
     if (drawsShadowTargets())
       timed(passes::kShadowTargets, [&] {
-        shadowTargetsPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_,
-                                   unsigned(settings_.shadows.drawnTargets()), options.frameSeed, shadowTargets_);
+        shadowTargetsPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, shadowEstimator_.drawnTargets,
+                                   options.frameSeed, shadowTargets_);
       });
     LightPassTarget target = lightPassTarget();
     LightPassDraws draws;
@@ -255,6 +243,17 @@ FrameStats Renderer::render(const CameraView& view) {
   ++frameIndex_;
   gl::checkErrors("frame");
   return stats;
+}
+
+void Renderer::resolveShadows() {
+  ShadowEstimatorLimits limits;
+  limits.bruteForce = settings_.lightPass.bruteForce;
+  limits.inputLights = inputLights_.count;
+  limits.inputLightsPerBlock = lightPass_.inputLightsPerBlock();
+  ResolvedShadowEstimator resolved = resolveShadowEstimator(settings_.shadows, limits);
+  for (const std::string& line : resolved.switchedOff)
+    if (reportedLimits_.insert(line).second) std::fprintf(stderr, "lgh: %s\n", line.c_str());
+  shadowEstimator_ = resolved.estimator;
 }
 
 void Renderer::restartAccumulation() {

@@ -3,6 +3,7 @@
 // and the per-pass timings. lgh-render, lgh-viewer, the tests and the benchmarks all render
 // through this class; there is no second implementation of a pass anywhere.
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -108,18 +109,13 @@ class Renderer {
   bool pointLightsThroughLgh() const;
   bool shadowed() const { return settings_.shadows.samples > 0; }
   // Shadow rays aim at input lights drawn from the selected grid lights' clusters.
-  bool drawsShadowTargets() const {
-    return shadowed() && settings_.shadows.targets > 0 && !settings_.lightPass.bruteForce &&
-           hierarchy_.gridLightCount > 0;
-  }
-  // The filter scales the LGH's irradiance by the shadow samples' filtered weight D, which estimates
-  // what the input lights add over what the grid lights add only when the samples cover every level (and
-  // the brute-force light pass's irradiance is already the input lights' own: D = 1).
+  bool drawsShadowTargets() const { return shadowEstimator_.drawnTargets > 0 && hierarchy_.gridLightCount > 0; }
   IrradianceCorrection irradianceCorrection() const {
-    const ShadowSettings& shadows = settings_.shadows;
-    const bool enabled = shadows.correctIrradiance && !shadows.skipFinest && !settings_.lightPass.bruteForce;
-    return {enabled, shadows.correctionError};
+    return {shadowEstimator_.correctIrradiance, shadowEstimator_.correctionError};
   }
+  // This frame's shadow estimator (the settings resolved against its limits); says once on stderr what a
+  // limit switched off.
+  void resolveShadows();
   bool interleaved() const { return settings_.lightPass.interleave > 1; }
   bool accumulating() const { return settings_.indirect && settings_.accumulation.enabled; }
   // Restarts the history when the lights were rebuilt or the estimate's settings changed, and counts
@@ -158,6 +154,9 @@ class Renderer {
   AccumulationPass accumulationPass_;
   ShadowFilterPass shadowFilterPass_;
   CompositePass compositePass_;
+
+  ShadowEstimator shadowEstimator_;       // resolved each frame by resolveShadows()
+  std::set<std::string> reportedLimits_;  // what a limit switched off, said once
 
   // What the accumulated history was summed with (settings as text) and where it was seen from.
   std::string accumulationKey_;

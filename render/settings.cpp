@@ -1,5 +1,6 @@
 #include "render/settings.h"
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -7,6 +8,16 @@
 #include "render/text_parse.h"
 
 namespace lgh {
+
+bool isChoice(const char* choices, const std::string& value) {
+  const std::string list = choices;
+  for (size_t begin = 0; begin <= list.size();) {
+    const size_t end = std::min(list.find('|', begin), list.size());
+    if (list.compare(begin, end - begin, value) == 0 && !value.empty()) return true;
+    begin = end + 1;
+  }
+  return false;
+}
 
 void setSetting(RenderSettings& settings, const std::string& name, const std::string& value) {
   bool found = false;
@@ -34,6 +45,8 @@ void setSetting(RenderSettings& settings, const std::string& name, const std::st
       }
       field = v;
     } else {
+      if (info.choices && !isChoice(info.choices, value))
+        throw std::invalid_argument(where + ": '" + value + "' is not one of " + info.choices);
       field = value;
     }
   });

@@ -40,21 +40,24 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
-void addOptions(CLI::App& app, Command& c) {
+// --help shows the options a first render needs; --help-all the rest (render/app/cli_settings.h).
+void addOptions(CLI::App& app, Command& c, int argc, char** argv) {
   app.add_option("scene", c.scenePath, "glTF scene (.gltf or .glb)")->capture_default_str();
   app.add_option("-o,--output", c.output, "output image: .png/.jpg (tone-mapped sRGB) or .exr/.hdr (linear HDR)")
       ->capture_default_str();
-  app.add_option("--backend", c.backend, "OpenGL context: " + joined(lgh::gl::backendNames()))->capture_default_str();
-  app.add_option("--aov", c.aovOutputs, "also write an AOV: NAME=FILE, NAME one of " + joined(lgh::aovNames()));
-  app.add_option("--frames", c.frames,
-                 "render this many frames from the still camera (same VPLs, new shadow samples and interleaving "
-                 "rotation each) and write the last: their accumulated estimate (unless --accumulate=false)")
+  app.add_option("--frames", c.frames, "render N frames from the still camera and write the last (accumulated)")
       ->capture_default_str()
       ->check(CLI::Range(1, 1 << 20));
-  app.add_flag("-q,--quiet", c.quiet, "print nothing but errors");
-  app.add_flag("--debug-gl", c.debugGL, "KHR_debug context: GL errors abort the render with the driver's message");
-  lgh::addSettingsOptions(app, c.settings);
-  lgh::addLightOptions(app, c.addedLights);
+  const std::string advanced = lgh::addSettingsCommandLine(app, c.settings, argc, argv);
+  app.add_option("--backend", c.backend, "OpenGL context: " + joined(lgh::gl::backendNames()))
+      ->capture_default_str()
+      ->group(advanced);
+  app.add_option("--aov", c.aovOutputs, "also write an AOV: NAME=FILE, NAME one of " + joined(lgh::aovNames()))
+      ->group(advanced);
+  app.add_flag("-q,--quiet", c.quiet, "print nothing but errors")->group(advanced);
+  app.add_flag("--debug-gl", c.debugGL, "KHR_debug context: GL errors abort the render with the driver's message")
+      ->group(advanced);
+  lgh::addLightOptions(app, c.addedLights, advanced);
 }
 
 // The --aov requests by AOV, checked (names, extensions, folders) before any work.
@@ -83,9 +86,8 @@ void printLightPassSummary(const lgh::RenderSettings& settings, const lgh::Light
     std::printf("LGH        L = %d, alpha %.3g, start level %d, interleave %dx%d, drawn%s\n", ls.levels,
                 double(pass.alpha), pass.startLevel, pass.interleave, pass.interleave, perLevel.c_str());
   if (settings.shadows.samples > 0)
-    std::printf("shadows    k = %d per pixel (%s), %s, filter %d passes\n", settings.shadows.samples,
-                settings.shadows.uniform ? "uniform" : "by contribution",
-                settings.shadows.skipFinest ? "finest level skipped" : "all levels", settings.filter.passes);
+    std::printf("shadows    k = %d per pixel, %s estimator, filter %d passes\n", settings.shadows.samples,
+                settings.shadows.estimator.c_str(), settings.filter.passes);
   if (pass.overdraw)
     std::printf("overdraw   %.1f fragments rasterized per pixel (max %u), %.1f shaded, efficiency %.2f (%s volumes)\n",
                 ls.rasterizedPerPixel, ls.maxRasterized, ls.shadedPerPixel, ls.efficiency(),
@@ -117,7 +119,7 @@ void printSummary(const Command& c, const lgh::gl::Context& context, const lgh::
 int run(int argc, char** argv) {
   CLI::App app{"lgh-render: global illumination with a lighting grid hierarchy, rendered headless"};
   Command c;
-  addOptions(app, c);
+  addOptions(app, c, argc, argv);
   CLI11_PARSE(app, argc, argv);
   // More than one frame is asked for to accumulate them, unless --accumulate says otherwise.
   if (c.frames > 1 && app.count("--accumulate") == 0) c.settings.accumulation.enabled = true;

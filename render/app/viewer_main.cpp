@@ -57,8 +57,8 @@ int run(int argc, char** argv) {
   app.add_flag("--debug-gl", debugGL, "KHR_debug context: GL errors abort with the driver's message");
   // The viewer accumulates while the view is still (--accumulate=false: every frame on its own).
   state.settings.accumulation.enabled = true;
-  lgh::addSettingsOptions(app, state.settings);
-  lgh::addLightOptions(app, addedLights);
+  const std::string advanced = lgh::addSettingsCommandLine(app, state.settings, argc, argv);
+  lgh::addLightOptions(app, addedLights, advanced);
   CLI11_PARSE(app, argc, argv);
   // Without a size the window opens at 1280 x 720 and renders at half that (lgh-render's default
   // 640 x 360): room for the panel, and frames as fast as lgh-render's.

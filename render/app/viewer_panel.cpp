@@ -15,8 +15,6 @@
 namespace lgh {
 namespace {
 
-const char* const kToneMaps[] = {"aces", "reinhard", "clamp"};
-
 void tooltip(const char* help) {
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", help);
 }
@@ -38,26 +36,32 @@ bool cameraCombo(const char* label, std::string& value, const Scene& scene) {
   return changed;
 }
 
-bool choiceCombo(const char* label, std::string& value, const char* const* choices, int count) {
+// A combo over SettingInfo::choices ("a|b|c").
+bool choiceCombo(const char* label, std::string& value, const std::string& choices) {
   bool changed = false;
   if (ImGui::BeginCombo(label, value.c_str())) {
-    for (int i = 0; i < count; ++i)
-      if (ImGui::Selectable(choices[i], value == choices[i])) {
-        value = choices[i];
+    for (size_t begin = 0; begin < choices.size();) {
+      const size_t end = std::min(choices.find('|', begin), choices.size());
+      const std::string choice = choices.substr(begin, end - begin);
+      if (ImGui::Selectable(choice.c_str(), value == choice)) {
+        value = choice;
         changed = true;
       }
+      begin = end + 1;
+    }
     ImGui::EndCombo();
   }
   return changed;
 }
 
-// One widget per render setting, chosen by its type and range: sliders within SettingInfo's limits
-// (logarithmic where the range spans orders of magnitude), checkboxes for flags.
-bool drawSettings(RenderSettings& settings, const Scene& scene) {
+// One widget per render setting of `tier`, chosen by its type and range: sliders within SettingInfo's
+// limits (logarithmic where the range spans orders of magnitude), checkboxes for flags, combos for choices.
+bool drawSettings(RenderSettings& settings, const Scene& scene, SettingTier tier) {
   bool changed = false;
   visitSettings(settings, [&](auto& value, const SettingInfo& info) {
     using T = std::decay_t<decltype(value)>;
     const std::string name = info.name;
+    if (info.tier != tier) return;
     if (name == "width" || name == "height") return;  // the window decides (shown above)
     constexpr ImGuiSliderFlags kClamp = ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_NoRoundToFormat;
     const bool bounded = info.min < info.max;
@@ -89,8 +93,8 @@ bool drawSettings(RenderSettings& settings, const Scene& scene) {
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (name == "camera")
         changed |= cameraCombo(info.name, value, scene);
-      else if (name == "tonemap")
-        changed |= choiceCombo(info.name, value, kToneMaps, int(std::size(kToneMaps)));
+      else if (info.choices)
+        changed |= choiceCombo(info.name, value, info.choices);
       else
         ImGui::LabelText(info.name, "%s", value.c_str());
     }
@@ -299,9 +303,14 @@ PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) drawCameraSection(state, requests);
     if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen))
       drawLightsSection(state, *info.scene, requests);
+    bool settingsChanged = false;
     if (ImGui::CollapsingHeader("Render settings", ImGuiTreeNodeFlags_DefaultOpen))
-      if (drawSettings(state.settings, *info.scene) && state.view == Aov::Overdraw)
-        state.settings.lightPass.overdraw = true;
+      settingsChanged |= drawSettings(state.settings, *info.scene, SettingTier::User);
+    if (ImGui::CollapsingHeader("Advanced settings"))
+      settingsChanged |= drawSettings(state.settings, *info.scene, SettingTier::Advanced);
+    if (ImGui::CollapsingHeader("Ablations (docs/settings.md)"))
+      settingsChanged |= drawSettings(state.settings, *info.scene, SettingTier::Ablation);
+    if (settingsChanged && state.view == Aov::Overdraw) state.settings.lightPass.overdraw = true;
     ImGui::PopItemWidth();
   }
   ImGui::End();

@@ -90,12 +90,16 @@ void LightVolumePass::checkTarget(const LightPassOptions& options, const LightPa
                                 std::to_string(gpu::kMaxLightPassLevels - 1) + " supported");
 }
 
-// The unselectable grid lights are counted through the drawn targets when the settings ask for it, there
-// are grid lights and targets, and the input lights fit one storage block (the fragments read any of them).
+// The unselectable grid lights are counted through the drawn targets when the estimator asks for it and
+// there are grid lights and targets. The fragments read any input light, so they must fit one storage
+// block: resolveShadowEstimator switches the counting off (and says so) when they do not.
 unsigned LightVolumePass::unselectableTargets(const LightPassOptions& options, size_t lightCount, int L,
                                               const ShadowTargets* drawnTargets) const {
-  const bool counts = options.shadows.countsUnselectable() && !options.pass.bruteForce && L >= 1 && drawnTargets &&
-                      drawnTargets->races > 0 && lightCount <= maxBlockLights_;
+  const bool counts = options.shadows.countUnselectable && L >= 1 && drawnTargets && drawnTargets->races > 0;
+  if (counts && lightCount > maxBlockLights_)
+    throw std::invalid_argument("light pass: counting the unselectable grid lights needs the " +
+                                std::to_string(lightCount) + " input lights in one storage block (at most " +
+                                std::to_string(maxBlockLights_) + ")");
   return counts ? drawnTargets->races : 0u;
 }
 
@@ -181,12 +185,12 @@ void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHi
     u.cullingDepthScale = options.sceneSize;
     u.shadowSamples = unsigned(options.shadows.samples);
     u.selectFlags = (options.shadows.skipFinest ? gpu::kSelectSkipFinest : 0u) |
-                    (options.shadows.uniform ? gpu::kSelectUniform : 0u) |
+                    (options.shadows.uniformSelection ? gpu::kSelectUniform : 0u) |
                     (options.shadows.blendTargets ? gpu::kSelectBlendTargets : 0u);
     u.drawnTargets = drawnTargets;
     u.frameSeed = options.frameSeed;
     u.tileRotation = options.tileRotation % unsigned(n * n);
-    u.defensive = options.shadows.selectionDefensive();
+    u.defensive = options.shadows.defensive;
     for (int l = 1; l <= L; ++l) u.levelOffsets[l / 4][l % 4] = unsigned(hierarchy.levels[size_t(l)].offset);
     std::memcpy(staging.data() + i * uniformStride_, &u, sizeof(u));
   }

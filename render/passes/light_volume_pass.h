@@ -27,6 +27,7 @@
 #include "render/passes/shadow_targets_pass.h"
 #include "render/passes/volume_culling.h"
 #include "render/settings.h"
+#include "render/shadow_estimator.h"
 
 namespace lgh {
 
@@ -35,8 +36,8 @@ namespace lgh {
 struct LightPassOptions {
   LightPassSettings pass;
   // Shadow-sample selection (docs/design.md §5): k slots per pixel, filled in proportion to each light's
-  // contribution (or uniformly, for comparison); samples = 0: no selection.
-  ShadowSettings shadows{0};
+  // contribution (or uniformly, for comparison); samples = 0: no selection. Resolved: read as it is.
+  ShadowEstimator shadows;
   float clampDistance = 0.0f;  // d_c, resolved
   float sceneSize = 1.0f;      // spreads the culling depth over [0, 1) (shared/light_levels.h)
   unsigned frameSeed = 0;
@@ -48,7 +49,7 @@ struct LightPassOptions {
 struct ShadowSlots {
   gl::Buffer totals;        // float per pixel
   gl::Buffer slots;         // uint per pixel and slot: gpu::kSlotS0 | S0 index, grid-light index, or kNoLight
-  gl::Buffer unselectable;  // float per pixel: luminance, on the totals' scale (ShadowSettings::countsUnselectable)
+  gl::Buffer unselectable;  // float per pixel: luminance, on the totals' scale (ShadowEstimator::countUnselectable)
   int k = 0;
   glm::ivec2 size{0};  // the target's size (tiled when interleaving)
   void allocate(glm::ivec2 targetSize, int samples);
@@ -73,9 +74,12 @@ class LightVolumePass {
  public:
   // floatAtomics: GL_NV_shader_atomic_float is available (the selection's running total uses it).
   explicit LightVolumePass(bool floatAtomics);
+  // Input lights one storage block holds (ShadowEstimatorLimits: counting the unselectable grid lights
+  // needs every input light in one block).
+  size_t inputLightsPerBlock() const { return maxBlockLights_; }
 
   // drawnTargets: this frame's shadow-ray targets, through which the pass counts the grid lights it cannot
-  // select (options.shadows.countsUnselectable(); null, or input lights beyond one storage block: not counted).
+  // select (options.shadows.countUnselectable; it throws if the input lights exceed inputLightsPerBlock()).
   LightPassDraws execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
                          const LightPassOptions& options, LightPassTarget& target,
                          const ShadowTargets* drawnTargets = nullptr);

@@ -33,9 +33,9 @@ void ShadowRayPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, const
   program_.set("weighTargets", int(lightPass.shadows.weighTargets));
   program_.set("blendTargets", int(lightPass.shadows.blendTargets));
   program_.set("spread", lightPass.shadows.spread);
-  program_.set("uniformSelection", int(lightPass.shadows.uniform));
+  program_.set("uniformSelection", int(lightPass.shadows.uniformSelection));
   program_.set("everyLevelSelected", int(!lightPass.shadows.skipFinest));
-  program_.set("defensive", lightPass.shadows.selectionDefensive());
+  program_.set("defensive", lightPass.shadows.defensive);
   program_.set("sampleSpread", lightPass.shadows.correctionSampleSpread);
   program_.set("clampDistance", lightPass.clampDistance);
   program_.set("alpha", lightPass.pass.alpha);

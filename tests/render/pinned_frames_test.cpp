@@ -105,8 +105,7 @@ TEST_F(PinnedFramesTest, InterleavedUniformSelection) {
   settings.lightPass.alpha = 2.0f;
   settings.hierarchy.levels = 3;
   settings.shadows.samples = 1;
-  settings.shadows.uniform = true;
-  settings.shadows.skipFinest = false;
+  settings.shadows.estimator = "uniform";
   settings.shadows.spread = 0.0f;
   settings.filter.passes = 0;
   checkFrames("interleaved_uniform", 1);

@@ -201,7 +201,7 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
         reachableBlended += a * blendedSum.total;
       }
       // Selectable: a positive importance (with the defensive share, any grid light blended here).
-      if (!(f > 0) && !(settings.shadows.selectionDefensive() > 0 && blend > 0)) continue;
+      if (!(f > 0) && !(resolveShadowEstimator(settings.shadows, {}).estimator.defensive > 0 && blend > 0)) continue;
       if (!(contributionSum.total > 0)) continue;
       byShare.visible += f * shareSum.ratio(), byShare.total += f;
       byContribution.visible += f * contributionSum.ratio(), byContribution.total += f;

@@ -217,7 +217,7 @@ TEST_F(ShadowTest, ImportanceSelectionBeatsUniform) {
   const ImageRGBA exact = fromGLRows(settings.image.width, settings.image.height, exactTexture.readRGBA());
 
   auto shadowedError = [&](bool uniform, int k, int filterPasses) {
-    settings.shadows.uniform = uniform;
+    settings.shadows.estimator = uniform ? "uniform" : "converging";
     settings.shadows.samples = k;
     settings.filter.passes = filterPasses;
     renderer.setSettings(settings);
