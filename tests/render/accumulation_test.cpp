@@ -2,6 +2,8 @@
 // floor with the irradiance corrected; n x n interleaving with the per-frame rotation gives the 1 x 1
 // irradiance after n^2 frames; a moved camera keeps the history of surfaces still in view and restarts
 // the disoccluded ones; changed lights or settings restart it.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "gl_test_env.h"
@@ -56,11 +58,67 @@ class AccumulationTest : public GLTest {
   RenderSettings settings;
 };
 
-// The shadow estimate (brute-force light pass, so that only shadows differ from the exact image)
-// against one shadow ray per light and pixel: the error falls with the frames, filtered or not.
-TEST_F(AccumulationTest, StillFramesLowerTheShadowedError) {
+// The accumulation is exactly the ratio estimator over the frames: after N still frames the ratio is
+// sum T_f r_f / sum T_f and the irradiance sum E_f / N of the same N frames rendered one by one (same
+// seeds), to float round-off. An exponential moving average, or a sum of every other frame, would keep
+// the error falling and fail this. Brute-force light pass: only the shadows differ from the exact image.
+TEST_F(AccumulationTest, StillFramesAccumulateExactlyTheFramesRatioEstimator) {
   const SceneGpu gpu(scene);
   settings.image.width = 64;  // brute force: kept small
+  settings.image.height = 36;
+  settings.inputLights.vpls = 1000;
+  settings.lightPass.bruteForce = true;
+  settings.shadows.samples = 1;
+  settings.filter.passes = 0;
+  constexpr int kFrames = 16;
+  RenderSettings single = settings;
+  single.accumulation.enabled = false;
+  Renderer frames(gpu, single), accumulating(gpu, settings);
+  const size_t pixels = size_t(settings.image.width) * settings.image.height;
+  std::vector<double> weightedRatio(pixels), weight(pixels), lastRatio(pixels);
+  std::vector<glm::dvec3> irradiance(pixels);
+  for (int f = 0; f < kFrames; ++f) {
+    frames.render(view());
+    accumulating.render(view());
+    const std::vector<glm::vec4> raw = frames.texture(Aov::Ratio).readRGBA();  // r: ratio, b: its weight T
+    const std::vector<glm::vec4> e = frames.texture(Aov::Irradiance).readRGBA();
+    for (size_t i = 0; i < pixels; ++i) {
+      const double t = std::max(raw[i].b, 0.0f);
+      weightedRatio[i] += t * raw[i].r, weight[i] += t, lastRatio[i] = raw[i].r;
+      irradiance[i] += glm::dvec3(e[i]);
+    }
+  }
+  const std::vector<glm::vec4> ratio = accumulating.texture(Aov::Ratio).readRGBA();
+  const std::vector<glm::vec4> e = accumulating.texture(Aov::Irradiance).readRGBA();
+  const std::vector<glm::vec4> position = accumulating.gbuffer().position.readRGBA();
+  double worstRatio = 0, worstIrradiance = 0;
+  size_t surfaces = 0, weighed = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    if (position[i].w == 0) continue;
+    ++surfaces;
+    weighed += weight[i] > 0;
+    const double expected = weight[i] > 0 ? std::clamp(weightedRatio[i] / weight[i], 0.0, 1.0) : lastRatio[i];
+    worstRatio = std::max(worstRatio, std::abs(ratio[i].r - expected));
+    EXPECT_EQ(ratio[i].a, float(kFrames)) << "pixel " << i;
+    const glm::dvec3 mean = irradiance[i] / double(kFrames);
+    const double scale = std::max({mean.r, mean.g, mean.b, 1e-12});
+    worstIrradiance = std::max(worstIrradiance, glm::length(glm::dvec3(e[i]) - mean) / scale);
+  }
+  std::printf(
+      "  %zu surface pixels (%zu weighed): largest difference from the frames' estimator: ratio %.2e, "
+      "irradiance %.2e relative\n",
+      surfaces, weighed, worstRatio, worstIrradiance);
+  EXPECT_GT(weighed, surfaces / 2);
+  EXPECT_LT(worstRatio, 1e-5);  // float sums of 16 terms in [0, 1]
+  EXPECT_LT(worstIrradiance, 1e-5);
+}
+
+// The error of the accumulated shadows against one shadow ray per light and pixel falls as independent
+// frames predict: with e(N)^2 = b^2 + s^2 / N (a bias b that no frame removes, a variance s^2 that N frames
+// divide), 1 and 4 frames fix b and s, and 16 frames must come within 15% of b^2 + s^2 / 16.
+TEST_F(AccumulationTest, StillFramesLowerTheShadowedErrorAsIndependentFrames) {
+  const SceneGpu gpu(scene);
+  settings.image.width = 64;
   settings.image.height = 36;
   settings.inputLights.vpls = 1000;
   settings.lightPass.bruteForce = true;
@@ -78,15 +136,16 @@ TEST_F(AccumulationTest, StillFramesLowerTheShadowedError) {
     EXPECT_EQ(stats.accumulatedFrames, frames);
     return shadowedError(renderer, exact);
   };
-  for (int passes : {0, 5}) {
-    const double one = errorAfter(passes, 1), four = errorAfter(passes, 4), sixteen = errorAfter(passes, 16);
-    std::printf("  %s: relative RMSE 1 frame %.4f, 4 frames %.4f, 16 frames %.4f\n", passes ? "filtered" : "raw", one,
-                four, sixteen);
-    EXPECT_LT(four, one);
-    EXPECT_LT(sixteen, four);
-    // Independent frames: the raw error falls as 1/sqrt(N) (0.25 at 16); the filtered one less.
-    EXPECT_LT(sixteen, (passes ? 0.8 : 0.6) * one);
-  }
+  const double one = errorAfter(0, 1), four = errorAfter(0, 4), sixteen = errorAfter(0, 16);
+  const double variance = std::max(one * one - four * four, 0.0) * 4.0 / 3.0, bias = one * one - variance;
+  const double predicted = std::sqrt(std::max(bias, 0.0) + variance / 16.0);
+  std::printf("  raw: relative RMSE 1 frame %.4f, 4 frames %.4f, 16 frames %.4f (independent frames: %.4f)\n", one,
+              four, sixteen, predicted);
+  EXPECT_LT(four, 0.65 * one);  // 0.5 without bias
+  EXPECT_LT(sixteen, 1.15 * predicted);
+  const double filteredOne = errorAfter(5, 1), filteredSixteen = errorAfter(5, 16);
+  std::printf("  filtered: relative RMSE 1 frame %.4f, 16 frames %.4f\n", filteredOne, filteredSixteen);
+  EXPECT_LT(filteredSixteen, 0.8 * filteredOne);
 }
 
 // The irradiance correction (ShadowSettings::correctIrradiance) against the exact shadowed irradiance:
@@ -193,33 +252,58 @@ TEST_F(AccumulationTest, InterleavedFramesSumToTheFullIrradiance) {
   EXPECT_LT(error[15], 1e-5);
 }
 
-// A small sideways step: surfaces still in view keep their history (reprojected); the ones the step
-// uncovered start one. A jump to the other side of the room keeps (almost) none.
+// A sideways step: surfaces still in view keep their history, reprojected; the ones the step uncovered
+// start one. The unshadowed irradiance of a surface point is the same every frame, so each kept pixel
+// must hold what a fresh render at the new camera holds, up to the nearest-texel reprojection (the
+// previous frame's point within half a pixel of this one). A history read through the wrong camera keeps
+// as many pixels on the box's flat walls but gives them another point's irradiance. A jump to the other
+// side of the room keeps (almost) none.
 TEST_F(AccumulationTest, MovedCameraKeepsTheHistoryOfSurfacesStillInView) {
   const SceneGpu gpu(scene);
-  settings.shadows.samples = 1;
+  settings.shadows.samples = 1;  // the history's length is the accumulated ratio's alpha
   Renderer renderer(gpu, settings);
   const Camera camera = resolveCamera(scene, settings);
   for (int f = 0; f < 4; ++f) renderer.render(view(camera));
   Camera stepped = camera;
-  stepped.position += 0.02f * scene.bounds.diagonal() * camera.orientation[0];
+  stepped.position += 0.05f * scene.bounds.diagonal() * camera.orientation[0];
   EXPECT_EQ(renderer.render(view(stepped)).accumulatedFrames, 1) << "the still-frame count restarts on a move";
   const std::vector<float> n = historyLengths(renderer);
-  size_t valid = 0, kept = 0, restarted = 0, other = 0;
-  for (float v : n) {
-    if (v == 0.0f) continue;
+  const std::vector<glm::vec4> accumulated = renderer.texture(Aov::Irradiance).readRGBA();
+  Renderer fresh(gpu, settings);
+  fresh.render(view(stepped));
+  const std::vector<glm::vec4> expected = fresh.texture(Aov::Irradiance).readRGBA();
+  size_t valid = 0, kept = 0, restarted = 0, other = 0, far = 0;
+  double differenceSum = 0;
+  for (size_t i = 0; i < n.size(); ++i) {
+    if (n[i] == 0.0f) continue;
     ++valid;
-    if (v == 5.0f)
-      ++kept;
-    else if (v == 1.0f)
+    if (n[i] == 1.0f) {
       ++restarted;
-    else
+    } else if (n[i] == 5.0f) {
+      ++kept;
+      const double scale = std::max(luminance(expected[i]), 1e-12);
+      const double difference = std::abs(luminance(accumulated[i]) - luminance(expected[i])) / scale;
+      differenceSum += difference;
+      far += difference > 0.05;
+    } else {
       ++other;
+    }
   }
-  std::printf("  step: %zu pixels, %zu kept 5 frames, %zu restarted\n", valid, kept, restarted);
+  const double meanDifference = differenceSum / double(std::max<size_t>(kept, 1));
+  std::printf(
+      "  step: %zu pixels, %zu kept 5 frames, %zu restarted; kept against a fresh render: mean relative "
+      "difference %.4f, %zu beyond 5%%\n",
+      valid, kept, restarted, meanDifference, far);
   EXPECT_EQ(other, 0u);
-  EXPECT_GT(double(kept), 0.8 * double(valid));
+  EXPECT_GT(double(kept), 0.7 * double(valid));
   EXPECT_GT(restarted, 0u) << "the step uncovers surfaces behind the boxes and at the image's edge";
+  // Nearest-texel reprojection reads the previous frame's point within half a pixel of this one: at 96 x 54
+  // the irradiance's gradient across half a pixel (near the light, in the corners) makes 4 of the 5 frames
+  // differ by 2.5% on average and 9% of the kept pixels by over 5% (measured). Through the wrong camera (the
+  // matrices swapped) 70% of the pixels are kept all the same, differing by 26% on average, 78% of them by
+  // over 5%.
+  EXPECT_LT(meanDifference, 0.06);
+  EXPECT_LT(double(far), 0.2 * double(kept));
 
   Camera turned = stepped;
   turned.orientation[0] = -turned.orientation[0];
