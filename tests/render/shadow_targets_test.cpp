@@ -478,7 +478,8 @@ TEST_F(ShadowTargetsTest, UnselectableGridLightsCompleteTheUnshadowedSum) {
     const std::vector<Light> lights =
         fromGpuLights(renderer.inputLights().lights.download<gpu::GpuLight>(renderer.inputLights().count));
     // The floor pixels with at least a tenth of the brightest one's light of which the selectable grid
-    X const ImageRGBA position = renderer.readImage(Aov::Position);
+    // lights' lights add at most nine tenths (52 of them; T's sum over them has a 0.4% standard error).
+    const ImageRGBA position = renderer.readImage(Aov::Position);
     std::vector<ExpectedRatios> perPixel(position.pixels.size());
     double brightest = 0;
     for (size_t i = 0; i < position.pixels.size(); ++i) {
