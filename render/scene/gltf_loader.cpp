@@ -4,10 +4,12 @@
 // code); everything after that is ours: every index the file contains is range-checked and every
 // byte an accessor reads is bounds-checked here, because tinygltf 2.7 checks neither and a bad
 // file must end in SceneLoadError, never a crash. Order of work:
-//   read file → parse (tinygltf) → asset version, required extensions → node world transforms (tree
-//   check, double precision) → meshes (triangles bucketed by material, world positions in double) →
-//   scene origin (positions shifted to scene space, then float) → materials (+ the textures they
-//   use) → lights → cameras → group triangles by material, bounds.
+//   read file → parse (tinygltf) → asset version, required extensions (gltf_container) → node world
+//   transforms (tree check, double precision) → meshes (triangles bucketed by material, world
+//   positions in double) → scene origin (positions shifted to scene space, then float) → materials
+//   (+ the textures they use) → lights → cameras → group triangles by material, bounds.
+// The helpers report problems as gltf::FileProblem without the path, and loadScene turns them into
+// SceneLoadError("<path>: <problem>").
 // Strictness: what the glTF 2.0 specification forbids and would change the image (the Khronos
 // validator's errors that apply to what this renderer reads; README "Strict glTF 2.0") ends in
 // SceneLoadError. Numbers are checked where they become float: a JSON value such as 1e39 is a
@@ -15,8 +17,6 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
-#include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -25,8 +25,6 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
-#include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -47,6 +45,8 @@
 #pragma GCC diagnostic pop
 #endif
 
+#include "render/scene/gltf_checks.h"
+#include "render/scene/gltf_container.h"
 #include "render/scene/scene.h"
 
 namespace lgh {
@@ -60,45 +60,16 @@ const Camera& Scene::camera(const std::string& name) const {
                        (cameras.empty() ? std::string("the scene has no cameras") : "available cameras: " + available));
 }
 
+namespace gltf {
 namespace {
 
 namespace fs = std::filesystem;
 
-const char* const kSupportedExtensions[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                            "KHR_texture_transform", "KHR_mesh_quantization"};
-
-// Image callback for tinygltf: keep embedded (data URI) images encoded, so that only the images a
-// material uses are ever decoded. Images in a bufferView are left alone here; the loader reads
-// them from the buffer itself, with bounds checks tinygltf 2.7 does not make.
-bool keepEncodedImage(tinygltf::Image* image, const int /*index*/, std::string* /*err*/, std::string* /*warn*/,
-                      int /*reqWidth*/, int /*reqHeight*/, const unsigned char* bytes, int size, void* /*user*/) {
-  if (image->bufferView >= 0) return true;
-  image->image.assign(bytes, bytes + std::max(size, 0));
-  image->as_is = true;
-  return true;
-}
-
-std::string label(const char* kind, size_t index, const std::string& name) {
-  std::string s = std::string(kind) + " " + std::to_string(index);
-  if (!name.empty()) s += " '" + name + "'";
-  return s;
-}
-
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 template <int N>
 bool finiteVec(const glm::vec<N, float>& v) {
   for (int i = 0; i < N; ++i)
     if (!std::isfinite(v[i])) return false;
   return true;
-}
-
-// True when `v` survives the conversion to float (finite and within float's range).
-bool fitsFloat(double v) { return std::isfinite(v) && std::abs(v) <= double(std::numeric_limits<float>::max()); }
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
 }
 
 // Unit normal of triangle (a, b, c) wound counter-clockwise, or `fallback` for zero-area (or
@@ -276,26 +247,6 @@ bool isIndexType(int componentType) {
          componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
 }
 
-std::string percentDecode(const std::string& uri) {
-  std::string out;
-  for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
-}
-
-std::uint32_t readU32(const unsigned char* p) {
-  std::uint32_t v;
-  std::memcpy(&v, p, 4);
-  return v;
-}
-
 // Vertex triangles of a primitive as 3 entries each, from its index list (or 0..n-1), following
 // the glTF rules for strips ({v_i, v_i+1+i%2, v_i+2-i%2}) and fans ({v_i+1, v_i+2, v_0}).
 std::vector<std::uint32_t> triangulate(int mode, const std::vector<std::uint32_t>& idx) {
@@ -321,34 +272,15 @@ std::vector<std::uint32_t> triangulate(int mode, const std::vector<std::uint32_t
   return tris;
 }
 
-// Collects one kind of recoverable problem so a file with thousands of them gives one warning line.
-struct WarningGroup {
-  explicit WarningGroup(std::string what) : text(std::move(what)) {}
-  std::string text;
-  size_t count = 0;
-  std::vector<std::string> examples;
-  void add(const std::string& example) {
-    ++count;
-    if (examples.size() < 5 && std::find(examples.begin(), examples.end(), example) == examples.end())
-      examples.push_back(example);
-  }
-  void flush(std::vector<std::string>& out) const {
-    if (count == 0) return;
-    std::string s = text + " (" + std::to_string(count) + "x: ";
-    for (size_t i = 0; i < examples.size(); ++i) s += (i ? ", " : "") + examples[i];
-    if (count > examples.size()) s += ", ...";
-    out.push_back(s + ")");
-  }
-};
-
 class GltfLoader {
  public:
   explicit GltfLoader(const fs::path& path) : path_(path) { scene_.source = path; }
 
   Scene load() {
-    parse(readFile());
-    checkAssetVersion();
-    checkRequiredExtensions();
+    model_ = parseFile(path_, readFile(path_), scene_.warnings);
+    checkAssetVersion(model_);
+    meshQuantization_ = extensionUsed(model_, "KHR_mesh_quantization");
+    checkRequiredExtensions(model_);
     nodeWorldTransforms();
     loadMeshes();
     loadMaterials();
@@ -363,151 +295,6 @@ class GltfLoader {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(path_.string() + ": " + problem); }
-
-  // ---------------------------------------------------------------------------------------------
-  // Reading and parsing
-
-  std::vector<unsigned char> readFile() const {
-    std::error_code ec;
-    const fs::file_status status = fs::status(path_, ec);
-    if (!fs::exists(status)) fail("file not found");
-    if (fs::is_directory(status)) fail("is a directory, not a glTF file");
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) fail("cannot open file for reading: " + std::string(std::strerror(errno)));
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) fail("error while reading the file");
-    if (bytes.empty()) fail("file is empty");
-    if (bytes.size() >= std::numeric_limits<unsigned int>::max()) fail("file is larger than 4 GiB");
-    return bytes;
-  }
-
-  // tinygltf's checks of the GLB container are incomplete (the BIN chunk may overrun the file by
-  // its 8-byte header), so the container is validated here first, with plain messages.
-  void checkGlbHeader(const std::vector<unsigned char>& b) const {
-    if (b.size() < 12)
-      fail("bad .glb header: the file has " + std::to_string(b.size()) + " bytes, less than the 12-byte header");
-    if (std::memcmp(b.data(), "glTF", 4) != 0) fail("bad .glb header: the file does not start with the magic 'glTF'");
-    const std::uint32_t version = readU32(&b[4]), length = readU32(&b[8]);
-    if (version != 2) fail("bad .glb header: container version " + std::to_string(version) + ", expected 2");
-    if (length > b.size())
-      fail("bad .glb header: declares " + std::to_string(length) + " bytes but the file has " +
-           std::to_string(b.size()) + " (truncated?)");
-    if (length < 20)
-      fail("bad .glb header: declared length " + std::to_string(length) + " leaves no room for the JSON chunk");
-    const std::uint32_t jsonLength = readU32(&b[12]);
-    if (std::memcmp(&b[16], "JSON", 4) != 0) fail("bad .glb header: the first chunk is not of type JSON");
-    const std::uint64_t jsonEnd = 20ull + jsonLength;
-    if (jsonLength == 0 || jsonEnd > length)
-      fail("bad .glb header: the JSON chunk length " + std::to_string(jsonLength) + " overruns the file");
-    if (jsonEnd < length) {
-      if (jsonEnd + 8 > length) fail("bad .glb header: a chunk header is cut off after the JSON chunk");
-      const std::uint32_t binLength = readU32(&b[jsonEnd]);
-      if (std::memcmp(&b[jsonEnd + 4], "BIN\0", 4) != 0) fail("bad .glb header: the second chunk is not of type BIN");
-      if (jsonEnd + 8 + binLength > length)
-        fail("bad .glb header: the BIN chunk length " + std::to_string(binLength) + " overruns the file");
-    }
-  }
-
-  // tinygltf's messages are terse; say in our words what kind of problem it is, keep its details.
-  std::string explainParseError(std::string err) const {
-    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    for (char& c : err)
-      if (c == '\n') c = ';';
-    auto has = [&](const char* s) { return err.find(s) != std::string::npos; };
-    if (has("json.exception") || has("parse error") || has("JSON string too short") || has("Root element is not"))
-      return "invalid JSON: " + err;
-    if (has("File size mismatch") || has("Invalid `byteLength'"))
-      return "buffer data is shorter or longer than its declared byteLength (truncated .bin?): " + err;
-    if (has("File not found") || has("File read error") || has("File is empty"))
-      return "cannot load a file the glTF refers to: " + err;
-    if (has("decode 'uri'")) return "invalid data URI: " + err;
-    if (has("\"asset\" object not found"))  // tinygltf says this also when only asset.version is missing
-      return "asset or asset.version is missing (a glTF 2.0 file declares \"asset\": {\"version\": \"2.0\"}): " + err;
-    return "invalid glTF: " + (err.empty() ? std::string("tinygltf rejected the file") : err);
-  }
-
-  void parse(const std::vector<unsigned char>& bytes) {
-    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-    std::string ext = path_.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext == ".glb" || binary) checkGlbHeader(bytes);
-
-    tinygltf::TinyGLTF gltf;
-    gltf.SetImageLoader(&keepEncodedImage, nullptr);
-    std::string err, warn;
-    const std::string baseDir = path_.parent_path().string();
-    bool ok = false;
-    try {
-      ok = binary ? gltf.LoadBinaryFromMemory(&model_, &err, &warn, bytes.data(), unsigned(bytes.size()), baseDir)
-                  : gltf.LoadASCIIFromString(&model_, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                             unsigned(bytes.size()), baseDir);
-    } catch (const std::exception& e) {  // e.g. std::out_of_range on an empty data URI
-      ok = false;
-      err += e.what();
-    }
-    if (!ok) fail(explainParseError(err));
-    checkWhatTinygltfDrops(bytes, binary);
-    std::istringstream lines(warn);
-    for (std::string line; std::getline(lines, line);)
-      if (!line.empty()) scene_.warnings.push_back("tinygltf: " + line);
-  }
-
-  // glTF 1.0 files (and any other major version) differ in structure: refuse them by name instead of
-  // rendering whatever parts happen to parse (validator: UNKNOWN_ASSET_MAJOR_VERSION).
-  void checkAssetVersion() const {
-    const std::string& version = model_.asset.version;
-    if (version.empty()) fail("asset.version is missing (a glTF 2.0 file declares \"asset\": {\"version\": \"2.0\"})");
-    const size_t dot = version.find('.');
-    const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
-    const bool wellFormed = dot != std::string::npos && dot > 0 && dot + 1 < version.size() &&
-                            std::all_of(version.begin(), version.begin() + std::ptrdiff_t(dot), digit) &&
-                            std::all_of(version.begin() + std::ptrdiff_t(dot) + 1, version.end(), digit);
-    if (!wellFormed) fail("asset.version '" + version + "' is not of the form MAJOR.MINOR");
-    const std::string major = version.substr(0, dot);
-    if (major != "2")
-      fail("asset.version is '" + version + "': this is not a glTF 2.0 file (only major version 2 is supported" +
-           (major == "1" ? "; glTF 1.0 files can be converted with a tool such as gltf-pipeline)" : ")"));
-  }
-
-  bool extensionUsed(const char* name) const {
-    return std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), name) != model_.extensionsUsed.end() ||
-           std::find(model_.extensionsRequired.begin(), model_.extensionsRequired.end(), name) !=
-               model_.extensionsRequired.end();
-  }
-
-  // tinygltf reads a node's translation/rotation/scale only when it has no matrix, so a file with both
-  // (NODE_MATRIX_TRS: which one the author meant is unknown) looks valid after parsing. The raw JSON
-  // (a .glb's JSON chunk, validated by checkGlbHeader) is read again for that.
-  void checkWhatTinygltfDrops(const std::vector<unsigned char>& bytes, bool binary) const {
-    const unsigned char* begin = bytes.data();
-    size_t size = bytes.size();
-    if (binary) {
-      size = readU32(&bytes[12]);
-      begin += 20;
-    }
-    const nlohmann::json doc = nlohmann::json::parse(begin, begin + size, nullptr, false);
-    if (!doc.is_object() || !doc.contains("nodes") || !doc["nodes"].is_array()) return;
-    const nlohmann::json& nodes = doc["nodes"];
-    for (size_t i = 0; i < nodes.size() && i < model_.nodes.size(); ++i)
-      if (nodes[i].is_object() && nodes[i].contains("matrix") &&
-          (nodes[i].contains("translation") || nodes[i].contains("rotation") || nodes[i].contains("scale")))
-        fail(nodeLabel(i) + " has both a matrix and translation/rotation/scale (glTF allows one or the other)");
-  }
-
-  void checkRequiredExtensions() {
-    meshQuantization_ = extensionUsed("KHR_mesh_quantization");
-    for (const std::string& required : model_.extensionsRequired) {
-      if (std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), required) !=
-          std::end(kSupportedExtensions))
-        continue;
-      std::string supported;
-      for (const char* s : kSupportedExtensions) supported += (supported.empty() ? "" : ", ") + std::string(s);
-      fail("requires the glTF extension '" + required +
-           "', which this loader does not support (supported: " + supported + ")");
-    }
-  }
-
   // ---------------------------------------------------------------------------------------------
   // Nodes
 
@@ -1158,7 +945,7 @@ class GltfLoader {
     size_t size = 0;
     if (image.bufferView >= 0) {
       bytes = bufferViewData(image.bufferView, "image " + std::to_string(i), &size);
-    } else if (image.as_is) {  // data URI, kept encoded by keepEncodedImage
+    } else if (image.as_is) {  // data URI, kept encoded by parseFile's image callback
       bytes = image.image.data();
       size = image.image.size();
     } else if (!image.uri.empty()) {
@@ -1364,10 +1151,13 @@ class GltfLoader {
 };
 
 }  // namespace
+}  // namespace gltf
 
 Scene loadScene(const std::filesystem::path& path) {
   try {
-    return GltfLoader(path).load();
+    return gltf::GltfLoader(path).load();
+  } catch (const gltf::FileProblem& problem) {
+    throw SceneLoadError(path.string() + ": " + problem.what());
   } catch (const SceneLoadError&) {
     throw;
   } catch (const std::bad_alloc&) {
