@@ -5,7 +5,7 @@
 // byte an accessor reads is bounds-checked here, because tinygltf 2.7 checks neither and a bad
 // file must end in SceneLoadError, never a crash. Order of work:
 //   read file → parse (tinygltf) → asset version, required extensions (gltf_container) → node world
-//   transforms (tree check, double precision) → meshes (triangles bucketed by material, world
+//   transforms (tree check, double precision: gltf_nodes) → meshes (triangles bucketed by material, world
 //   positions in double) → scene origin (positions shifted to scene space, then float) → materials
 //   (+ the textures they use) → lights → cameras → group triangles by material, bounds.
 // The helpers report problems as gltf::FileProblem without the path, and loadScene turns them into
@@ -21,9 +21,6 @@
 #include <cstring>
 #include <fstream>
 #include <glm/gtc/matrix_inverse.hpp>
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
-#include <glm/gtc/type_ptr.hpp>
 #include <limits>
 #include <string>
 #include <vector>
@@ -47,6 +44,7 @@
 
 #include "render/scene/gltf_checks.h"
 #include "render/scene/gltf_container.h"
+#include "render/scene/gltf_nodes.h"
 #include "render/scene/scene.h"
 
 namespace lgh {
@@ -281,7 +279,7 @@ class GltfLoader {
     checkAssetVersion(model_);
     meshQuantization_ = extensionUsed(model_, "KHR_mesh_quantization");
     checkRequiredExtensions(model_);
-    nodeWorldTransforms();
+    nodes_ = displayedNodes(model_);
     loadMeshes();
     loadMaterials();
     loadLights();
@@ -295,123 +293,7 @@ class GltfLoader {
   }
 
  private:
-  // ---------------------------------------------------------------------------------------------
-  // Nodes
-
-  std::string nodeLabel(size_t i) const { return label("node", i, model_.nodes[i].name); }
-
-  glm::dmat4 localTransform(size_t i) const {
-    const tinygltf::Node& node = model_.nodes[i];
-    glm::dmat4 m(1.0);
-    for (const std::vector<double>* values : {&node.matrix, &node.translation, &node.rotation, &node.scale})
-      for (double v : *values)
-        if (!fitsFloat(v))
-          fail(nodeLabel(i) + " has a transform number " + number(v) +
-               " that is not a finite float (NaN, Inf or beyond 3.4e38)");
-    if (!node.matrix.empty()) {
-      if (!node.translation.empty() || !node.rotation.empty() || !node.scale.empty())
-        fail(nodeLabel(i) + " has both a matrix and translation/rotation/scale (glTF allows one or the other)");
-      if (node.matrix.size() != 16)
-        fail(nodeLabel(i) + " has a matrix with " + std::to_string(node.matrix.size()) + " numbers, expected 16");
-      m = glm::make_mat4(node.matrix.data());  // both column-major
-      // A node matrix must be an affine TRS: a projective bottom row would be silently dropped.
-      if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
-        fail(nodeLabel(i) +
-             " has a matrix whose last row is not (0, 0, 0, 1): not decomposable to translation/rotation/scale");
-    } else {
-      auto check = [&](const std::vector<double>& v, size_t n, const char* what) {
-        if (!v.empty() && v.size() != n)
-          fail(nodeLabel(i) + " has a " + what + " with " + std::to_string(v.size()) + " numbers, expected " +
-               std::to_string(n));
-        return !v.empty();
-      };
-      if (check(node.translation, 3, "translation"))
-        m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
-      if (check(node.rotation, 4, "rotation")) {
-        glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);  // glTF: x, y, z, w
-        const double length = glm::length(q);
-        if (!(length > 0.0) || !std::isfinite(length))
-          fail(nodeLabel(i) + " has a zero or non-finite rotation quaternion");
-        m *= glm::mat4_cast(q / length);  // exporters round; renormalise instead of shearing
-      }
-      if (check(node.scale, 3, "scale")) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
-    }
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r)
-        if (!std::isfinite(m[c][r])) fail(nodeLabel(i) + " has a non-finite (NaN or Inf) transform");
-    return m;
-  }
-
-  // World transforms of the nodes of the displayed scene, and those nodes in depth-first order.
-  // glTF requires the hierarchy to be a forest (one parent per node, no cycles, scene nodes are
-  // roots); tinygltf does not check, and a cycle would otherwise loop forever.
-  void nodeWorldTransforms() {
-    const size_t n = model_.nodes.size();
-    std::vector<int> parent(n, -1);
-    for (size_t i = 0; i < n; ++i) {
-      for (int child : model_.nodes[i].children) {
-        if (child < 0 || size_t(child) >= n)
-          fail(nodeLabel(i) + " has child " + std::to_string(child) + ", but the file has " + std::to_string(n) +
-               " nodes");
-        if (size_t(child) == i) fail("node hierarchy has a cycle: " + nodeLabel(i) + " is its own child");
-        if (parent[child] >= 0)
-          fail("node hierarchy is not a tree: " + nodeLabel(child) + " is a child of both " + nodeLabel(parent[child]) +
-               " and " + nodeLabel(i));
-        parent[child] = int(i);
-      }
-    }
-    // With one parent per node, a cycle is a chain of parent links that never reaches a root.
-    std::vector<char> state(n, 0);  // 0 = unvisited, 1 = on the current chain, 2 = reaches a root
-    std::vector<int> chain;
-    for (size_t i = 0; i < n; ++i) {
-      chain.clear();
-      int j = int(i);
-      while (j >= 0 && state[j] == 0) {
-        state[j] = 1;
-        chain.push_back(j);
-        j = parent[j];
-      }
-      if (j >= 0 && state[j] == 1) fail("node hierarchy has a cycle through " + nodeLabel(j));
-      for (int k : chain) state[k] = 2;
-    }
-
-    std::vector<int> roots;
-    if (!model_.scenes.empty()) {
-      const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
-      if (size_t(s) >= model_.scenes.size())
-        fail("the default scene is " + std::to_string(s) + ", but the file has " +
-             std::to_string(model_.scenes.size()) + " scenes");
-      roots = model_.scenes[s].nodes;
-      for (int r : roots) {
-        if (r < 0 || size_t(r) >= n)
-          fail("scene " + std::to_string(s) + " lists node " + std::to_string(r) + ", but the file has " +
-               std::to_string(n) + " nodes");
-        if (parent[r] >= 0)
-          fail("scene " + std::to_string(s) + " lists " + nodeLabel(r) + ", which is a child of " +
-               nodeLabel(parent[r]) + " (scene nodes must be roots)");
-      }
-    } else {  // no scenes: show every root node
-      for (size_t i = 0; i < n; ++i)
-        if (parent[i] < 0) roots.push_back(int(i));
-    }
-
-    world_.assign(n, glm::dmat4(1.0));
-    std::vector<char> visited(n, 0);
-    std::vector<int> stack(roots.rbegin(), roots.rend());
-    for (int r : roots) world_[r] = localTransform(r);
-    while (!stack.empty()) {
-      const int i = stack.back();
-      stack.pop_back();
-      if (visited[i]) fail("scene lists " + nodeLabel(i) + " more than once");
-      visited[i] = 1;
-      drawOrder_.push_back(i);
-      const auto& children = model_.nodes[i].children;
-      for (auto it = children.rbegin(); it != children.rend(); ++it) {
-        world_[*it] = world_[i] * localTransform(*it);
-        stack.push_back(*it);
-      }
-    }
-  }
+  std::string nodeLabel(size_t i) const { return gltf::nodeLabel(model_, i); }
 
   // ---------------------------------------------------------------------------------------------
   // Accessors
@@ -570,7 +452,7 @@ class GltfLoader {
   }
 
   void loadMeshes() {
-    for (int nodeIndex : drawOrder_) {
+    for (int nodeIndex : nodes_.drawOrder) {
       const tinygltf::Node& node = model_.nodes[nodeIndex];
       if (node.mesh < 0) continue;
       if (size_t(node.mesh) >= model_.meshes.size())
@@ -580,13 +462,14 @@ class GltfLoader {
       for (size_t p = 0; p < mesh.primitives.size(); ++p)
         appendPrimitive(mesh.primitives[p],
                         label("mesh", size_t(node.mesh), mesh.name) + " primitive " + std::to_string(p),
-                        world_[nodeIndex]);
+                        nodes_.world[nodeIndex]);
     }
     if (triangleCount_ == 0) {
       size_t primitives = 0;
       for (const auto& m : model_.meshes) primitives += m.primitives.size();
       fail("the scene contains no triangles to render (" + std::to_string(model_.meshes.size()) + " meshes, " +
-           std::to_string(primitives) + " primitives, " + std::to_string(drawOrder_.size()) + " nodes in the scene)");
+           std::to_string(primitives) + " primitives, " + std::to_string(nodes_.drawOrder.size()) +
+           " nodes in the scene)");
     }
     chooseSceneOrigin();
   }
@@ -985,7 +868,7 @@ class GltfLoader {
 
   // A node's position in scene space (world minus the scene origin, in double, then float).
   glm::vec3 worldPosition(int node) const {
-    const glm::dvec3 world(world_[node][3]);
+    const glm::dvec3 world(nodes_.world[node][3]);
     for (int c = 0; c < 3; ++c)
       if (!fitsFloat(world[c])) fail(nodeLabel(size_t(node)) + " has a position beyond float range");
     return glm::vec3(world - scene_.origin);
@@ -993,14 +876,14 @@ class GltfLoader {
 
   // The node's -Z axis in world space (lights and cameras look down their local -Z).
   glm::vec3 worldForward(int node) const {
-    const glm::dvec3 d = glm::dmat3(world_[node]) * glm::dvec3(0.0, 0.0, -1.0);
+    const glm::dvec3 d = glm::dmat3(nodes_.world[node]) * glm::dvec3(0.0, 0.0, -1.0);
     const double length = glm::length(d);
     if (!(length > 0.0) || !std::isfinite(length)) fail(nodeLabel(node) + " has a degenerate transform (zero scale)");
     return glm::vec3(d / length);
   }
 
   void loadLights() {
-    for (int nodeIndex : drawOrder_) {
+    for (int nodeIndex : nodes_.drawOrder) {
       const tinygltf::Node& node = model_.nodes[nodeIndex];
       const auto ext = node.extensions.find("KHR_lights_punctual");
       if (ext == node.extensions.end()) continue;
@@ -1059,7 +942,7 @@ class GltfLoader {
 
   void loadCameras() {
     std::vector<char> used(model_.cameras.size(), 0);
-    for (int nodeIndex : drawOrder_) {
+    for (int nodeIndex : nodes_.drawOrder) {
       const tinygltf::Node& node = model_.nodes[nodeIndex];
       if (node.camera < 0) continue;
       if (size_t(node.camera) >= model_.cameras.size())
@@ -1088,7 +971,7 @@ class GltfLoader {
       camera.position = worldPosition(nodeIndex);
       // Orthonormalise (Gram-Schmidt from the view axis): node scale and shear must not skew the view,
       // and right = up x back keeps the basis right-handed even under a mirroring parent.
-      const glm::dmat3 m(world_[nodeIndex]);
+      const glm::dmat3 m(nodes_.world[nodeIndex]);
       const glm::dvec3 back = -glm::dvec3(worldForward(nodeIndex));
       glm::dvec3 up = m[1] - glm::dot(m[1], back) * back;
       if (!(glm::length(up) > 1e-12)) fail(what + ": its node transform is degenerate");
@@ -1136,10 +1019,9 @@ class GltfLoader {
   fs::path path_;
   tinygltf::Model model_;
   Scene scene_;
-  std::vector<glm::dmat4> world_;           // per node; identity for nodes outside the displayed scene
+  SceneNodes nodes_;
   std::vector<glm::dvec3> worldPositions_;  // vertices in world space until chooseSceneOrigin()
   bool meshQuantization_ = false;           // KHR_mesh_quantization used: more attribute formats allowed
-  std::vector<int> drawOrder_;              // nodes of the displayed scene, depth first
   std::vector<std::vector<std::uint32_t>> trianglesByMaterial_;
   size_t triangleCount_ = 0;
   int defaultMaterial_ = -1;       // slot of the added default material, -1 if none is needed yet
