@@ -7,10 +7,10 @@
 //   read file → parse (tinygltf) → asset version, required extensions (gltf_container) → node world
 //   transforms (tree check, double precision: gltf_nodes) → meshes (accessors decoded by gltf_accessors;
 //   triangles bucketed by material, world positions in double) → scene origin (positions shifted to
-//   scene space, then float) → materials (+ the textures they use) → lights → cameras → group
-//   triangles by material, bounds.
-// The helpers report problems as gltf::FileProblem without the path, and loadScene turns them into
-// SceneLoadError("<path>: <problem>").
+//   scene space, then float) → materials (+ the textures they use: gltf_materials) → lights →
+//   cameras → group triangles by material, bounds.
+// This file assembles the scene; the helpers report problems as gltf::FileProblem without the path,
+// and loadScene turns them into SceneLoadError("<path>: <problem>").
 // Strictness: what the glTF 2.0 specification forbids and would change the image (the Khronos
 // validator's errors that apply to what this renderer reads; README "Strict glTF 2.0") ends in
 // SceneLoadError. Numbers are checked where they become float: a JSON value such as 1e39 is a
@@ -19,32 +19,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <glm/gtc/matrix_inverse.hpp>
 #include <limits>
 #include <string>
 #include <vector>
 
-// stb_image with internal linkage: only this file decodes images, and STB_IMAGE_STATIC keeps its
-// symbols from clashing with any other copy of stb in the program.
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#endif
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_NO_STDIO  // images come from memory (files are read by the loader)
-#include <stb/stb_image.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
-
 #include "render/scene/gltf_accessors.h"
 #include "render/scene/gltf_checks.h"
 #include "render/scene/gltf_container.h"
+#include "render/scene/gltf_materials.h"
 #include "render/scene/gltf_nodes.h"
 #include "render/scene/scene.h"
 
@@ -84,7 +67,7 @@ class GltfLoader {
     checkRequiredExtensions(model_);
     nodes_ = displayedNodes(model_);
     loadMeshes();
-    loadMaterials();
+    loadMaterials(model_, path_, trianglesByMaterial_, defaultMaterial_ >= 0, blendMaterials_, scene_);
     loadLights();
     loadCameras();
     groupTrianglesByMaterial();
@@ -136,17 +119,6 @@ class GltfLoader {
     chooseSceneOrigin();
   }
 
-  // The TEXCOORD set a texture reads: textureInfo.texCoord, overridden by KHR_texture_transform.texCoord.
-  static int effectiveTexCoord(const tinygltf::TextureInfo& info) {
-    const auto ext = info.extensions.find("KHR_texture_transform");
-    if (ext != info.extensions.end() && ext->second.IsObject() && ext->second.Has("texCoord") &&
-        ext->second.Get("texCoord").IsNumber())
-      return ext->second.Get("texCoord").GetNumberAsInt();
-    return info.texCoord;
-  }
-
-  // Transforms one primitive to world space (double) and appends its vertices (only those its
-  // triangles use) and triangles (to its material's bucket).
   // The primitive's triangles as corner indices (its indices, or 0..n-1, triangulated from strips and fans).
   std::vector<std::uint32_t> primitiveTriangles(const tinygltf::Primitive& prim, const std::string& what,
                                                 size_t vertexCount) {
@@ -232,6 +204,8 @@ class GltfLoader {
     }
   }
 
+  // Transforms one primitive to world space (double) and appends its vertices (only those its
+  // triangles use) and triangles (to its material's bucket).
   void appendPrimitive(const tinygltf::Primitive& prim, const std::string& what, const glm::dmat4& world) {
     if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) {
       skippedPrimitives_.add(what);
@@ -320,178 +294,6 @@ class GltfLoader {
   std::vector<std::uint32_t>& trianglesFor(std::uint32_t material) {
     if (trianglesByMaterial_.size() <= material) trianglesByMaterial_.resize(material + 1);
     return trianglesByMaterial_[material];
-  }
-
-  // ---------------------------------------------------------------------------------------------
-  // Materials and textures
-
-  void loadMaterials() {
-    scene_.materials.resize(model_.materials.size());
-    for (size_t i = 0; i < model_.materials.size(); ++i) {
-      const tinygltf::Material& src = model_.materials[i];
-      Material& dst = scene_.materials[i];
-      dst.name = src.name.empty() ? "material " + std::to_string(i) : src.name;
-      const std::string what = label("material", i, src.name);
-      const auto& bc = src.pbrMetallicRoughness.baseColorFactor;
-      if (bc.size() != 4) fail(what + " has a baseColorFactor that is not 4 numbers");
-      for (double c : bc)
-        if (!(c >= 0.0 && c <= 1.0)) fail(what + " has a baseColorFactor component " + number(c) + " outside [0, 1]");
-      dst.baseColorFactor = glm::vec4(bc[0], bc[1], bc[2], bc[3]);
-      glm::vec3 emissive(0.0f);
-      if (src.emissiveFactor.size() == 3)
-        emissive = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
-      else if (!src.emissiveFactor.empty())
-        fail(what + " has an emissiveFactor that is not 3 numbers");
-      for (double c : src.emissiveFactor)
-        if (!(c >= 0.0 && c <= 1.0)) fail(what + " has an emissiveFactor component " + number(c) + " outside [0, 1]");
-      if (src.alphaMode == "OPAQUE") {
-        dst.alphaMode = AlphaMode::Opaque;
-      } else if (src.alphaMode == "MASK") {
-        dst.alphaMode = AlphaMode::Mask;
-      } else if (src.alphaMode == "BLEND") {
-        dst.alphaMode = AlphaMode::Blend;
-        blendMaterials_.add(dst.name);
-      } else {
-        fail(what + " has alphaMode '" + src.alphaMode + "' (expected OPAQUE, MASK or BLEND)");
-      }
-      if (!(src.alphaCutoff >= 0.0) || !fitsFloat(src.alphaCutoff))
-        fail(what + " has alphaCutoff " + number(src.alphaCutoff) + " (must be a finite number >= 0)");
-      dst.alphaCutoff = float(src.alphaCutoff);
-      dst.doubleSided = src.doubleSided;
-      // KHR_materials_emissive_strength scales emissiveFactor (glTF caps the factor at 1).
-      const auto ext = src.extensions.find("KHR_materials_emissive_strength");
-      if (ext != src.extensions.end() && ext->second.Has("emissiveStrength")) {
-        const tinygltf::Value& strength = ext->second.Get("emissiveStrength");
-        if (!strength.IsNumber() || !(strength.GetNumberAsDouble() >= 0.0) || !fitsFloat(strength.GetNumberAsDouble()))
-          fail(label("material", i, src.name) +
-               ": KHR_materials_emissive_strength.emissiveStrength must be a number >= 0");
-        emissive *= float(strength.GetNumberAsDouble());
-      }
-      if (!finite(emissive) || glm::any(glm::lessThan(emissive, glm::vec3(0.0f))))
-        fail(label("material", i, src.name) + " has a negative or non-finite emission");
-      dst.emission = emissive;
-      // Textures are decoded only for materials the displayed triangles use.
-      if (i < trianglesByMaterial_.size() && !trianglesByMaterial_[i].empty()) {
-        dst.baseColorTexture = textureFor(src.pbrMetallicRoughness.baseColorTexture, dst.name, "base colour");
-        dst.emissiveTexture = textureFor(src.emissiveTexture, dst.name, "emissive");
-        dst.baseColorTexCoord = effectiveTexCoord(src.pbrMetallicRoughness.baseColorTexture);
-        dst.emissiveTexCoord = effectiveTexCoord(src.emissiveTexture);
-        dst.baseColorUvTransform =
-            uvTransform(src.pbrMetallicRoughness.baseColorTexture, what + " base colour texture");
-        dst.emissiveUvTransform = uvTransform(src.emissiveTexture, what + " emissive texture");
-      }
-    }
-    if (defaultMaterial_ >= 0 || scene_.materials.empty()) {
-      // glTF's default material is white; grey keeps a scene without materials readable.
-      Material grey;
-      grey.name = "default";
-      grey.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
-      if (defaultMaterial_ < 0) defaultMaterial_ = int(scene_.materials.size());
-      scene_.materials.push_back(grey);
-    }
-  }
-
-  // KHR_texture_transform of a texture slot as a 3x3 matrix on (u, v, 1): translation * rotation *
-  // scale, rotation counter-clockwise by `rotation` radians (the extension's definition).
-  glm::mat3 uvTransform(const tinygltf::TextureInfo& info, const std::string& what) const {
-    const auto ext = info.extensions.find("KHR_texture_transform");
-    if (info.index < 0 || ext == info.extensions.end()) return glm::mat3(1.0f);
-    const tinygltf::Value& t = ext->second;
-    const auto vec2 = [&](const char* key, glm::dvec2 fallback) {
-      if (!t.Has(key)) return fallback;
-      const tinygltf::Value& v = t.Get(key);
-      if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
-        fail(what + ": KHR_texture_transform." + key + " must be 2 numbers");
-      return glm::dvec2(v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble());
-    };
-    const glm::dvec2 offset = vec2("offset", glm::dvec2(0.0)), scale = vec2("scale", glm::dvec2(1.0));
-    double rotation = 0.0;
-    if (t.Has("rotation")) {
-      if (!t.Get("rotation").IsNumber()) fail(what + ": KHR_texture_transform.rotation must be a number");
-      rotation = t.Get("rotation").GetNumberAsDouble();
-    }
-    for (double v : {offset.x, offset.y, scale.x, scale.y, rotation})
-      if (!fitsFloat(v)) fail(what + ": KHR_texture_transform has a non-finite number " + number(v));
-    const double c = std::cos(rotation), s = std::sin(rotation);
-    // Columns of translation * rotation * scale (column-major, as GLSL's mat3).
-    return glm::mat3(glm::vec3(float(c * scale.x), float(s * scale.x), 0.0f),
-                     glm::vec3(float(-s * scale.y), float(c * scale.y), 0.0f),
-                     glm::vec3(float(offset.x), float(offset.y), 1.0f));
-  }
-
-  // Index into scene_.textures for a material's texture slot, -1 when absent or unusable (with
-  // a warning: a missing texture costs detail, not the scene).
-  int textureFor(const tinygltf::TextureInfo& info, const std::string& material, const char* slot) {
-    if (info.index < 0) return -1;
-    if (size_t(info.index) >= model_.textures.size())
-      fail("material '" + material + "' " + slot + " texture refers to texture " + std::to_string(info.index) +
-           ", but the file has " + std::to_string(model_.textures.size()) + " textures");
-    const int texCoord = effectiveTexCoord(info);
-    if (texCoord < 0) fail("material '" + material + "' " + slot + " texture has a negative texCoord");
-    if (texCoord > 1) {
-      scene_.warnings.push_back("material '" + material + "': " + slot + " texture uses TEXCOORD_" +
-                                std::to_string(texCoord) +
-                                "; only TEXCOORD_0 and TEXCOORD_1 are loaded, so the texture is ignored");
-      return -1;
-    }
-    const int source = model_.textures[info.index].source;
-    if (source < 0) {
-      scene_.warnings.push_back("material '" + material + "': texture " + std::to_string(info.index) +
-                                " has no image source this loader can read; using the factor only");
-      return -1;
-    }
-    if (size_t(source) >= model_.images.size())
-      fail("texture " + std::to_string(info.index) + " refers to image " + std::to_string(source) +
-           ", but the file has " + std::to_string(model_.images.size()) + " images");
-    if (imageTexture_.empty()) imageTexture_.assign(model_.images.size(), kNotDecoded);
-    if (imageTexture_[source] == kNotDecoded) imageTexture_[source] = decodeImage(size_t(source), material);
-    return imageTexture_[source];
-  }
-
-  // Decodes image `i` into scene_.textures (8-bit RGBA); -1 plus a warning if it cannot be had.
-  int decodeImage(size_t i, const std::string& material) {
-    const tinygltf::Image& image = model_.images[i];
-    const std::string name = !image.name.empty()  ? image.name
-                             : !image.uri.empty() ? image.uri
-                                                  : "image " + std::to_string(i);
-    std::vector<unsigned char> fileBytes;
-    const unsigned char* bytes = nullptr;
-    size_t size = 0;
-    if (image.bufferView >= 0) {
-      bytes = bufferViewData(model_, image.bufferView, "image " + std::to_string(i), &size);
-    } else if (image.as_is) {  // data URI, kept encoded by parseFile's image callback
-      bytes = image.image.data();
-      size = image.image.size();
-    } else if (!image.uri.empty()) {
-      const fs::path file = path_.parent_path() / fs::u8path(percentDecode(image.uri));
-      std::ifstream in(file, std::ios::binary);
-      if (!in) {
-        scene_.warnings.push_back("texture image '" + image.uri + "' not found (" + file.string() + "); material '" +
-                                  material + "' uses its factor only");
-        return -1;
-      }
-      fileBytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-      bytes = fileBytes.data();
-      size = fileBytes.size();
-    }
-    int width = 0, height = 0, channels = 0;
-    stbi_uc* pixels = nullptr;
-    if (bytes && size > 0 && size < size_t(std::numeric_limits<int>::max()))
-      pixels = stbi_load_from_memory(bytes, int(size), &width, &height, &channels, 4);
-    if (!pixels) {
-      scene_.warnings.push_back("texture image '" + name + "' cannot be decoded (" +
-                                (bytes && size ? std::string(stbi_failure_reason()) : std::string("no data")) +
-                                "); material '" + material + "' uses its factor only");
-      return -1;
-    }
-    Texture texture;
-    texture.name = name;
-    texture.width = width;
-    texture.height = height;
-    texture.rgba.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
-    stbi_image_free(pixels);
-    scene_.textures.push_back(std::move(texture));
-    return int(scene_.textures.size() - 1);
   }
 
   // ---------------------------------------------------------------------------------------------
@@ -645,8 +447,6 @@ class GltfLoader {
     for (const glm::vec3& p : scene_.positions) scene_.bounds.extend(p);
   }
 
-  static constexpr int kNotDecoded = -2;
-
   fs::path path_;
   tinygltf::Model model_;
   Scene scene_;
@@ -655,8 +455,7 @@ class GltfLoader {
   bool meshQuantization_ = false;           // KHR_mesh_quantization used: more attribute formats allowed
   std::vector<std::vector<std::uint32_t>> trianglesByMaterial_;
   size_t triangleCount_ = 0;
-  int defaultMaterial_ = -1;       // slot of the added default material, -1 if none is needed yet
-  std::vector<int> imageTexture_;  // image → texture index, -1 failed, kNotDecoded
+  int defaultMaterial_ = -1;  // slot of the added default material, -1 if none is needed yet
   WarningGroup missingNormals_{"primitives without NORMAL: flat face normals generated"};
   WarningGroup badNormals_{"zero or non-finite vertex normals replaced by face normals"};
   WarningGroup blendMaterials_{"alphaMode BLEND is rendered opaque (one surface per pixel in a deferred renderer)"};
