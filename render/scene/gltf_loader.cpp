@@ -2,12 +2,15 @@
 //
 // tinygltf parses the JSON and loads the buffers (compiled in tinygltf_impl.cpp without its image
 // code); everything after that is ours: every index the file contains is range-checked and every
-// byte an accessor reads is bounds-checked here, because tinygltf 2.7 checks neither and a bad
-// file must end in SceneLoadError, never a crash. Order of work:
-//   read file → parse (tinygltf) → asset version, required extensions → node world transforms (tree
-//   check, double precision) → meshes (triangles bucketed by material, world positions in double) →
-//   scene origin (positions shifted to scene space, then float) → materials (+ the textures they
-//   use) → lights → cameras → group triangles by material, bounds.
+// byte an accessor reads is bounds-checked, because tinygltf 2.7 checks neither and a bad file must
+// end in SceneLoadError, never a crash. Order of work:
+//   read file → parse (tinygltf) → asset version, required extensions (gltf_container) → node world
+//   transforms (tree check, double precision: gltf_nodes) → meshes (accessors decoded by gltf_accessors;
+//   triangles bucketed by material, world positions in double) → scene origin (positions shifted to
+//   scene space, then float) → materials (+ the textures they use: gltf_materials) → lights →
+//   cameras → group triangles by material, bounds.
+// This file assembles the scene; the helpers report problems as gltf::FileProblem without the path,
+// and loadScene turns them into SceneLoadError("<path>: <problem>").
 // Strictness: what the glTF 2.0 specification forbids and would change the image (the Khronos
 // validator's errors that apply to what this renderer reads; README "Strict glTF 2.0") ends in
 // SceneLoadError. Numbers are checked where they become float: a JSON value such as 1e39 is a
@@ -15,38 +18,17 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
-#include <cctype>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <glm/gtc/matrix_inverse.hpp>
-#include <glm/gtc/matrix_transform.hpp>
-#include <glm/gtc/quaternion.hpp>
-#include <glm/gtc/type_ptr.hpp>
 #include <limits>
-#include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 #include <vector>
 
-// stb_image with internal linkage: only this file decodes images, and STB_IMAGE_STATIC keeps its
-// symbols from clashing with any other copy of stb in the program.
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#endif
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_NO_STDIO  // images come from memory (files are read by the loader)
-#include <stb/stb_image.h>
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
-
+#include "render/scene/gltf_accessors.h"
+#include "render/scene/gltf_checks.h"
+#include "render/scene/gltf_container.h"
+#include "render/scene/gltf_materials.h"
+#include "render/scene/gltf_nodes.h"
 #include "render/scene/scene.h"
 
 namespace lgh {
@@ -60,46 +42,10 @@ const Camera& Scene::camera(const std::string& name) const {
                        (cameras.empty() ? std::string("the scene has no cameras") : "available cameras: " + available));
 }
 
+namespace gltf {
 namespace {
 
 namespace fs = std::filesystem;
-
-const char* const kSupportedExtensions[] = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                            "KHR_texture_transform", "KHR_mesh_quantization"};
-
-// Image callback for tinygltf: keep embedded (data URI) images encoded, so that only the images a
-// material uses are ever decoded. Images in a bufferView are left alone here; the loader reads
-// them from the buffer itself, with bounds checks tinygltf 2.7 does not make.
-bool keepEncodedImage(tinygltf::Image* image, const int /*index*/, std::string* /*err*/, std::string* /*warn*/,
-                      int /*reqWidth*/, int /*reqHeight*/, const unsigned char* bytes, int size, void* /*user*/) {
-  if (image->bufferView >= 0) return true;
-  image->image.assign(bytes, bytes + std::max(size, 0));
-  image->as_is = true;
-  return true;
-}
-
-std::string label(const char* kind, size_t index, const std::string& name) {
-  std::string s = std::string(kind) + " " + std::to_string(index);
-  if (!name.empty()) s += " '" + name + "'";
-  return s;
-}
-
-bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-template <int N>
-bool finiteVec(const glm::vec<N, float>& v) {
-  for (int i = 0; i < N; ++i)
-    if (!std::isfinite(v[i])) return false;
-  return true;
-}
-
-// True when `v` survives the conversion to float (finite and within float's range).
-bool fitsFloat(double v) { return std::isfinite(v) && std::abs(v) <= double(std::numeric_limits<float>::max()); }
-
-std::string number(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // Unit normal of triangle (a, b, c) wound counter-clockwise, or `fallback` for zero-area (or
 // non-finite) triangles. Computed in double: slivers far from the origin lose their normal in float.
@@ -110,248 +56,18 @@ glm::vec3 faceNormal(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3&
   return glm::vec3(n / length);
 }
 
-size_t componentSize(int componentType) {
-  switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return 1;
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return 2;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return 4;
-    default:
-      return 0;  // INT and DOUBLE are not legal in glTF 2.0
-  }
-}
-
-int componentCount(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-      return 1;
-    case TINYGLTF_TYPE_VEC2:
-      return 2;
-    case TINYGLTF_TYPE_VEC3:
-      return 3;
-    case TINYGLTF_TYPE_VEC4:
-      return 4;
-    default:
-      return 0;  // matrices: no vertex attribute we read uses them
-  }
-}
-
-// One component as float, with glTF's normalisation rules for integer types.
-float readComponent(const unsigned char* p, int componentType, bool normalized) {
-  switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
-      float v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return normalized ? float(*p) / 255.0f : float(*p);
-    case TINYGLTF_COMPONENT_TYPE_BYTE: {
-      const auto v = static_cast<std::int8_t>(*p);
-      return normalized ? std::max(float(v) / 127.0f, -1.0f) : float(v);
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      std::uint16_t v;
-      std::memcpy(&v, p, 2);
-      return normalized ? float(v) / 65535.0f : float(v);
-    }
-    case TINYGLTF_COMPONENT_TYPE_SHORT: {
-      std::int16_t v;
-      std::memcpy(&v, p, 2);
-      return normalized ? std::max(float(v) / 32767.0f, -1.0f) : float(v);
-    }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
-      std::uint32_t v;
-      std::memcpy(&v, p, 4);
-      return float(v);
-    }
-    default:
-      return 0.0f;
-  }
-}
-
-const char* componentTypeName(int componentType) {
-  switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_BYTE:
-      return "BYTE";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return "UNSIGNED_BYTE";
-    case TINYGLTF_COMPONENT_TYPE_SHORT:
-      return "SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-      return "UNSIGNED_SHORT";
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-      return "UNSIGNED_INT";
-    case TINYGLTF_COMPONENT_TYPE_FLOAT:
-      return "FLOAT";
-    default:
-      return "an invalid component type";
-  }
-}
-
-const char* typeName(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR:
-      return "SCALAR";
-    case TINYGLTF_TYPE_VEC2:
-      return "VEC2";
-    case TINYGLTF_TYPE_VEC3:
-      return "VEC3";
-    case TINYGLTF_TYPE_VEC4:
-      return "VEC4";
-    case TINYGLTF_TYPE_MAT2:
-      return "MAT2";
-    case TINYGLTF_TYPE_MAT3:
-      return "MAT3";
-    case TINYGLTF_TYPE_MAT4:
-      return "MAT4";
-    default:
-      return "an invalid type";
-  }
-}
-
-// The accessor formats glTF 2.0 allows for the vertex attributes this renderer reads (spec 3.7.2.1),
-// widened by KHR_mesh_quantization when the file uses it. A format outside these lists is an error
-// (validator: MESH_PRIMITIVE_ATTRIBUTES_ACCESSOR_INVALID_FORMAT): reading it anyway would guess.
-struct AttributeFormat {
-  int type, componentType;
-  bool normalized;
-};
-bool allowedFormat(const std::string& attribute, const AttributeFormat& f, bool quantization) {
-  const int kF = TINYGLTF_COMPONENT_TYPE_FLOAT, kB = TINYGLTF_COMPONENT_TYPE_BYTE,
-            kUB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, kS = TINYGLTF_COMPONENT_TYPE_SHORT,
-            kUS = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-  const bool isFloat = f.componentType == kF && !f.normalized;
-  const bool smallInt =
-      f.componentType == kB || f.componentType == kUB || f.componentType == kS || f.componentType == kUS;
-  const bool signedNormalized = f.normalized && (f.componentType == kB || f.componentType == kS);
-  const bool unsignedNormalized = f.normalized && (f.componentType == kUB || f.componentType == kUS);
-  if (attribute == "POSITION") return f.type == TINYGLTF_TYPE_VEC3 && (isFloat || (quantization && smallInt));
-  if (attribute == "NORMAL") return f.type == TINYGLTF_TYPE_VEC3 && (isFloat || (quantization && signedNormalized));
-  if (attribute.rfind("TEXCOORD_", 0) == 0)
-    return f.type == TINYGLTF_TYPE_VEC2 && (isFloat || unsignedNormalized || (quantization && smallInt));
-  if (attribute.rfind("COLOR_", 0) == 0)
-    return (f.type == TINYGLTF_TYPE_VEC3 || f.type == TINYGLTF_TYPE_VEC4) && (isFloat || unsignedNormalized);
-  return true;  // attributes this renderer does not read
-}
-
-std::string allowedFormatsText(const std::string& attribute, bool quantization) {
-  if (attribute == "POSITION")
-    return quantization ? "VEC3 FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT (KHR_mesh_quantization)"
-                        : "VEC3 FLOAT (other types need KHR_mesh_quantization)";
-  if (attribute == "NORMAL")
-    return quantization ? "VEC3 FLOAT, or normalized BYTE or SHORT (KHR_mesh_quantization)"
-                        : "VEC3 FLOAT (other types need KHR_mesh_quantization)";
-  if (attribute.rfind("TEXCOORD_", 0) == 0)
-    return quantization ? "VEC2 FLOAT, BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT (KHR_mesh_quantization)"
-                        : "VEC2 FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT";
-  return "VEC3 or VEC4 FLOAT, or normalized UNSIGNED_BYTE or UNSIGNED_SHORT";
-}
-
-std::uint32_t readIndex(const unsigned char* p, int componentType) {
-  switch (componentType) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-      return *p;
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-      std::uint16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    default: {
-      std::uint32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-  }
-}
-
-bool isIndexType(int componentType) {
-  return componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-         componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
-         componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-}
-
-std::string percentDecode(const std::string& uri) {
-  std::string out;
-  for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
-}
-
-std::uint32_t readU32(const unsigned char* p) {
-  std::uint32_t v;
-  std::memcpy(&v, p, 4);
-  return v;
-}
-
-// Vertex triangles of a primitive as 3 entries each, from its index list (or 0..n-1), following
-// the glTF rules for strips ({v_i, v_i+1+i%2, v_i+2-i%2}) and fans ({v_i+1, v_i+2, v_0}).
-std::vector<std::uint32_t> triangulate(int mode, const std::vector<std::uint32_t>& idx) {
-  std::vector<std::uint32_t> tris;
-  const size_t n = idx.size();
-  if (mode == TINYGLTF_MODE_TRIANGLES) {
-    tris.assign(idx.begin(), idx.begin() + std::ptrdiff_t(n / 3 * 3));
-  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP && n >= 3) {
-    tris.reserve(3 * (n - 2));
-    for (size_t i = 0; i + 2 < n; ++i) {
-      tris.push_back(idx[i]);
-      tris.push_back(idx[i + 1 + i % 2]);
-      tris.push_back(idx[i + 2 - i % 2]);
-    }
-  } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN && n >= 3) {
-    tris.reserve(3 * (n - 2));
-    for (size_t i = 0; i + 2 < n; ++i) {
-      tris.push_back(idx[i + 1]);
-      tris.push_back(idx[i + 2]);
-      tris.push_back(idx[0]);
-    }
-  }
-  return tris;
-}
-
-// Collects one kind of recoverable problem so a file with thousands of them gives one warning line.
-struct WarningGroup {
-  explicit WarningGroup(std::string what) : text(std::move(what)) {}
-  std::string text;
-  size_t count = 0;
-  std::vector<std::string> examples;
-  void add(const std::string& example) {
-    ++count;
-    if (examples.size() < 5 && std::find(examples.begin(), examples.end(), example) == examples.end())
-      examples.push_back(example);
-  }
-  void flush(std::vector<std::string>& out) const {
-    if (count == 0) return;
-    std::string s = text + " (" + std::to_string(count) + "x: ";
-    for (size_t i = 0; i < examples.size(); ++i) s += (i ? ", " : "") + examples[i];
-    if (count > examples.size()) s += ", ...";
-    out.push_back(s + ")");
-  }
-};
-
 class GltfLoader {
  public:
   explicit GltfLoader(const fs::path& path) : path_(path) { scene_.source = path; }
 
   Scene load() {
-    parse(readFile());
-    checkAssetVersion();
-    checkRequiredExtensions();
-    nodeWorldTransforms();
+    model_ = parseFile(path_, readFile(path_), scene_.warnings);
+    checkAssetVersion(model_);
+    meshQuantization_ = extensionUsed(model_, "KHR_mesh_quantization");
+    checkRequiredExtensions(model_);
+    nodes_ = displayedNodes(model_);
     loadMeshes();
-    loadMaterials();
+    loadMaterials(model_, path_, trianglesByMaterial_, defaultMaterial_ >= 0, blendMaterials_, scene_);
     loadLights();
     loadCameras();
     groupTrianglesByMaterial();
@@ -363,409 +79,7 @@ class GltfLoader {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& problem) const { throw SceneLoadError(path_.string() + ": " + problem); }
-
-  // ---------------------------------------------------------------------------------------------
-  // Reading and parsing
-
-  std::vector<unsigned char> readFile() const {
-    std::error_code ec;
-    const fs::file_status status = fs::status(path_, ec);
-    if (!fs::exists(status)) fail("file not found");
-    if (fs::is_directory(status)) fail("is a directory, not a glTF file");
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) fail("cannot open file for reading: " + std::string(std::strerror(errno)));
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) fail("error while reading the file");
-    if (bytes.empty()) fail("file is empty");
-    if (bytes.size() >= std::numeric_limits<unsigned int>::max()) fail("file is larger than 4 GiB");
-    return bytes;
-  }
-
-  // tinygltf's checks of the GLB container are incomplete (the BIN chunk may overrun the file by
-  // its 8-byte header), so the container is validated here first, with plain messages.
-  void checkGlbHeader(const std::vector<unsigned char>& b) const {
-    if (b.size() < 12)
-      fail("bad .glb header: the file has " + std::to_string(b.size()) + " bytes, less than the 12-byte header");
-    if (std::memcmp(b.data(), "glTF", 4) != 0) fail("bad .glb header: the file does not start with the magic 'glTF'");
-    const std::uint32_t version = readU32(&b[4]), length = readU32(&b[8]);
-    if (version != 2) fail("bad .glb header: container version " + std::to_string(version) + ", expected 2");
-    if (length > b.size())
-      fail("bad .glb header: declares " + std::to_string(length) + " bytes but the file has " +
-           std::to_string(b.size()) + " (truncated?)");
-    if (length < 20)
-      fail("bad .glb header: declared length " + std::to_string(length) + " leaves no room for the JSON chunk");
-    const std::uint32_t jsonLength = readU32(&b[12]);
-    if (std::memcmp(&b[16], "JSON", 4) != 0) fail("bad .glb header: the first chunk is not of type JSON");
-    const std::uint64_t jsonEnd = 20ull + jsonLength;
-    if (jsonLength == 0 || jsonEnd > length)
-      fail("bad .glb header: the JSON chunk length " + std::to_string(jsonLength) + " overruns the file");
-    if (jsonEnd < length) {
-      if (jsonEnd + 8 > length) fail("bad .glb header: a chunk header is cut off after the JSON chunk");
-      const std::uint32_t binLength = readU32(&b[jsonEnd]);
-      if (std::memcmp(&b[jsonEnd + 4], "BIN\0", 4) != 0) fail("bad .glb header: the second chunk is not of type BIN");
-      if (jsonEnd + 8 + binLength > length)
-        fail("bad .glb header: the BIN chunk length " + std::to_string(binLength) + " overruns the file");
-    }
-  }
-
-  // tinygltf's messages are terse; say in our words what kind of problem it is, keep its details.
-  std::string explainParseError(std::string err) const {
-    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    for (char& c : err)
-      if (c == '\n') c = ';';
-    auto has = [&](const char* s) { return err.find(s) != std::string::npos; };
-    if (has("json.exception") || has("parse error") || has("JSON string too short") || has("Root element is not"))
-      return "invalid JSON: " + err;
-    if (has("File size mismatch") || has("Invalid `byteLength'"))
-      return "buffer data is shorter or longer than its declared byteLength (truncated .bin?): " + err;
-    if (has("File not found") || has("File read error") || has("File is empty"))
-      return "cannot load a file the glTF refers to: " + err;
-    if (has("decode 'uri'")) return "invalid data URI: " + err;
-    if (has("\"asset\" object not found"))  // tinygltf says this also when only asset.version is missing
-      return "asset or asset.version is missing (a glTF 2.0 file declares \"asset\": {\"version\": \"2.0\"}): " + err;
-    return "invalid glTF: " + (err.empty() ? std::string("tinygltf rejected the file") : err);
-  }
-
-  void parse(const std::vector<unsigned char>& bytes) {
-    const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-    std::string ext = path_.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext == ".glb" || binary) checkGlbHeader(bytes);
-
-    tinygltf::TinyGLTF gltf;
-    gltf.SetImageLoader(&keepEncodedImage, nullptr);
-    std::string err, warn;
-    const std::string baseDir = path_.parent_path().string();
-    bool ok = false;
-    try {
-      ok = binary ? gltf.LoadBinaryFromMemory(&model_, &err, &warn, bytes.data(), unsigned(bytes.size()), baseDir)
-                  : gltf.LoadASCIIFromString(&model_, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                             unsigned(bytes.size()), baseDir);
-    } catch (const std::exception& e) {  // e.g. std::out_of_range on an empty data URI
-      ok = false;
-      err += e.what();
-    }
-    if (!ok) fail(explainParseError(err));
-    checkWhatTinygltfDrops(bytes, binary);
-    std::istringstream lines(warn);
-    for (std::string line; std::getline(lines, line);)
-      if (!line.empty()) scene_.warnings.push_back("tinygltf: " + line);
-  }
-
-  // glTF 1.0 files (and any other major version) differ in structure: refuse them by name instead of
-  // rendering whatever parts happen to parse (validator: UNKNOWN_ASSET_MAJOR_VERSION).
-  void checkAssetVersion() const {
-    const std::string& version = model_.asset.version;
-    if (version.empty()) fail("asset.version is missing (a glTF 2.0 file declares \"asset\": {\"version\": \"2.0\"})");
-    const size_t dot = version.find('.');
-    const auto digit = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; };
-    const bool wellFormed = dot != std::string::npos && dot > 0 && dot + 1 < version.size() &&
-                            std::all_of(version.begin(), version.begin() + std::ptrdiff_t(dot), digit) &&
-                            std::all_of(version.begin() + std::ptrdiff_t(dot) + 1, version.end(), digit);
-    if (!wellFormed) fail("asset.version '" + version + "' is not of the form MAJOR.MINOR");
-    const std::string major = version.substr(0, dot);
-    if (major != "2")
-      fail("asset.version is '" + version + "': this is not a glTF 2.0 file (only major version 2 is supported" +
-           (major == "1" ? "; glTF 1.0 files can be converted with a tool such as gltf-pipeline)" : ")"));
-  }
-
-  bool extensionUsed(const char* name) const {
-    return std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), name) != model_.extensionsUsed.end() ||
-           std::find(model_.extensionsRequired.begin(), model_.extensionsRequired.end(), name) !=
-               model_.extensionsRequired.end();
-  }
-
-  // tinygltf reads a node's translation/rotation/scale only when it has no matrix, so a file with both
-  // (NODE_MATRIX_TRS: which one the author meant is unknown) looks valid after parsing. The raw JSON
-  // (a .glb's JSON chunk, validated by checkGlbHeader) is read again for that.
-  void checkWhatTinygltfDrops(const std::vector<unsigned char>& bytes, bool binary) const {
-    const unsigned char* begin = bytes.data();
-    size_t size = bytes.size();
-    if (binary) {
-      size = readU32(&bytes[12]);
-      begin += 20;
-    }
-    const nlohmann::json doc = nlohmann::json::parse(begin, begin + size, nullptr, false);
-    if (!doc.is_object() || !doc.contains("nodes") || !doc["nodes"].is_array()) return;
-    const nlohmann::json& nodes = doc["nodes"];
-    for (size_t i = 0; i < nodes.size() && i < model_.nodes.size(); ++i)
-      if (nodes[i].is_object() && nodes[i].contains("matrix") &&
-          (nodes[i].contains("translation") || nodes[i].contains("rotation") || nodes[i].contains("scale")))
-        fail(nodeLabel(i) + " has both a matrix and translation/rotation/scale (glTF allows one or the other)");
-  }
-
-  void checkRequiredExtensions() {
-    meshQuantization_ = extensionUsed("KHR_mesh_quantization");
-    for (const std::string& required : model_.extensionsRequired) {
-      if (std::find(std::begin(kSupportedExtensions), std::end(kSupportedExtensions), required) !=
-          std::end(kSupportedExtensions))
-        continue;
-      std::string supported;
-      for (const char* s : kSupportedExtensions) supported += (supported.empty() ? "" : ", ") + std::string(s);
-      fail("requires the glTF extension '" + required +
-           "', which this loader does not support (supported: " + supported + ")");
-    }
-  }
-
-  // ---------------------------------------------------------------------------------------------
-  // Nodes
-
-  std::string nodeLabel(size_t i) const { return label("node", i, model_.nodes[i].name); }
-
-  glm::dmat4 localTransform(size_t i) const {
-    const tinygltf::Node& node = model_.nodes[i];
-    glm::dmat4 m(1.0);
-    for (const std::vector<double>* values : {&node.matrix, &node.translation, &node.rotation, &node.scale})
-      for (double v : *values)
-        if (!fitsFloat(v))
-          fail(nodeLabel(i) + " has a transform number " + number(v) +
-               " that is not a finite float (NaN, Inf or beyond 3.4e38)");
-    if (!node.matrix.empty()) {
-      if (!node.translation.empty() || !node.rotation.empty() || !node.scale.empty())
-        fail(nodeLabel(i) + " has both a matrix and translation/rotation/scale (glTF allows one or the other)");
-      if (node.matrix.size() != 16)
-        fail(nodeLabel(i) + " has a matrix with " + std::to_string(node.matrix.size()) + " numbers, expected 16");
-      m = glm::make_mat4(node.matrix.data());  // both column-major
-      // A node matrix must be an affine TRS: a projective bottom row would be silently dropped.
-      if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
-        fail(nodeLabel(i) +
-             " has a matrix whose last row is not (0, 0, 0, 1): not decomposable to translation/rotation/scale");
-    } else {
-      auto check = [&](const std::vector<double>& v, size_t n, const char* what) {
-        if (!v.empty() && v.size() != n)
-          fail(nodeLabel(i) + " has a " + what + " with " + std::to_string(v.size()) + " numbers, expected " +
-               std::to_string(n));
-        return !v.empty();
-      };
-      if (check(node.translation, 3, "translation"))
-        m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
-      if (check(node.rotation, 4, "rotation")) {
-        glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);  // glTF: x, y, z, w
-        const double length = glm::length(q);
-        if (!(length > 0.0) || !std::isfinite(length))
-          fail(nodeLabel(i) + " has a zero or non-finite rotation quaternion");
-        m *= glm::mat4_cast(q / length);  // exporters round; renormalise instead of shearing
-      }
-      if (check(node.scale, 3, "scale")) m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
-    }
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r)
-        if (!std::isfinite(m[c][r])) fail(nodeLabel(i) + " has a non-finite (NaN or Inf) transform");
-    return m;
-  }
-
-  // World transforms of the nodes of the displayed scene, and those nodes in depth-first order.
-  // glTF requires the hierarchy to be a forest (one parent per node, no cycles, scene nodes are
-  // roots); tinygltf does not check, and a cycle would otherwise loop forever.
-  void nodeWorldTransforms() {
-    const size_t n = model_.nodes.size();
-    std::vector<int> parent(n, -1);
-    for (size_t i = 0; i < n; ++i) {
-      for (int child : model_.nodes[i].children) {
-        if (child < 0 || size_t(child) >= n)
-          fail(nodeLabel(i) + " has child " + std::to_string(child) + ", but the file has " + std::to_string(n) +
-               " nodes");
-        if (size_t(child) == i) fail("node hierarchy has a cycle: " + nodeLabel(i) + " is its own child");
-        if (parent[child] >= 0)
-          fail("node hierarchy is not a tree: " + nodeLabel(child) + " is a child of both " + nodeLabel(parent[child]) +
-               " and " + nodeLabel(i));
-        parent[child] = int(i);
-      }
-    }
-    // With one parent per node, a cycle is a chain of parent links that never reaches a root.
-    std::vector<char> state(n, 0);  // 0 = unvisited, 1 = on the current chain, 2 = reaches a root
-    std::vector<int> chain;
-    for (size_t i = 0; i < n; ++i) {
-      chain.clear();
-      int j = int(i);
-      while (j >= 0 && state[j] == 0) {
-        state[j] = 1;
-        chain.push_back(j);
-        j = parent[j];
-      }
-      if (j >= 0 && state[j] == 1) fail("node hierarchy has a cycle through " + nodeLabel(j));
-      for (int k : chain) state[k] = 2;
-    }
-
-    std::vector<int> roots;
-    if (!model_.scenes.empty()) {
-      const int s = model_.defaultScene >= 0 ? model_.defaultScene : 0;
-      if (size_t(s) >= model_.scenes.size())
-        fail("the default scene is " + std::to_string(s) + ", but the file has " +
-             std::to_string(model_.scenes.size()) + " scenes");
-      roots = model_.scenes[s].nodes;
-      for (int r : roots) {
-        if (r < 0 || size_t(r) >= n)
-          fail("scene " + std::to_string(s) + " lists node " + std::to_string(r) + ", but the file has " +
-               std::to_string(n) + " nodes");
-        if (parent[r] >= 0)
-          fail("scene " + std::to_string(s) + " lists " + nodeLabel(r) + ", which is a child of " +
-               nodeLabel(parent[r]) + " (scene nodes must be roots)");
-      }
-    } else {  // no scenes: show every root node
-      for (size_t i = 0; i < n; ++i)
-        if (parent[i] < 0) roots.push_back(int(i));
-    }
-
-    world_.assign(n, glm::dmat4(1.0));
-    std::vector<char> visited(n, 0);
-    std::vector<int> stack(roots.rbegin(), roots.rend());
-    for (int r : roots) world_[r] = localTransform(r);
-    while (!stack.empty()) {
-      const int i = stack.back();
-      stack.pop_back();
-      if (visited[i]) fail("scene lists " + nodeLabel(i) + " more than once");
-      visited[i] = 1;
-      drawOrder_.push_back(i);
-      const auto& children = model_.nodes[i].children;
-      for (auto it = children.rbegin(); it != children.rend(); ++it) {
-        world_[*it] = world_[i] * localTransform(*it);
-        stack.push_back(*it);
-      }
-    }
-  }
-
-  // ---------------------------------------------------------------------------------------------
-  // Accessors
-
-  const tinygltf::Accessor& accessor(int index, const std::string& what) const {
-    if (index < 0 || size_t(index) >= model_.accessors.size())
-      fail(what + " refers to accessor " + std::to_string(index) + ", but the file has " +
-           std::to_string(model_.accessors.size()) + " accessors");
-    return model_.accessors[index];
-  }
-
-  // The bytes of bufferView `index`, checked to lie inside its buffer.
-  const unsigned char* bufferViewData(int index, const std::string& what, size_t* byteLength,
-                                      size_t* byteStride = nullptr) const {
-    if (index < 0 || size_t(index) >= model_.bufferViews.size())
-      fail(what + " refers to bufferView " + std::to_string(index) + ", but the file has " +
-           std::to_string(model_.bufferViews.size()) + " bufferViews");
-    const tinygltf::BufferView& view = model_.bufferViews[index];
-    if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
-      fail("bufferView " + std::to_string(index) + " refers to buffer " + std::to_string(view.buffer) +
-           ", but the file has " + std::to_string(model_.buffers.size()) + " buffers");
-    const std::vector<unsigned char>& data = model_.buffers[view.buffer].data;
-    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset)
-      fail("bufferView " + std::to_string(index) + " (bytes " + std::to_string(view.byteOffset) + ".." +
-           std::to_string(view.byteOffset + view.byteLength) + ") extends past the end of buffer " +
-           std::to_string(view.buffer) + " (" + std::to_string(data.size()) + " bytes; truncated?)");
-    *byteLength = view.byteLength;
-    if (byteStride) *byteStride = view.byteStride;
-    return data.data() + view.byteOffset;
-  }
-
-  // First element of `count` elements of `elementSize` bytes, `stride` apart (0 = packed), at
-  // `offset` in bufferView `viewIndex`; fails unless every byte read lies inside the view.
-  const unsigned char* locate(int viewIndex, size_t offset, size_t count, size_t elementSize, size_t* stride,
-                              const std::string& what) const {
-    size_t viewLength = 0, viewStride = 0;
-    const unsigned char* data = bufferViewData(viewIndex, what, &viewLength, &viewStride);
-    if (*stride == 0) *stride = viewStride ? viewStride : elementSize;
-    if (*stride < elementSize)
-      fail(what + ": bufferView " + std::to_string(viewIndex) + " has byteStride " + std::to_string(*stride) +
-           ", smaller than one element (" + std::to_string(elementSize) + " bytes)");
-    if (count == 0) return data;
-    // Written to avoid overflow for absurd counts: last element start + size <= view length.
-    const bool fits = offset <= viewLength && elementSize <= viewLength - offset &&
-                      count - 1 <= (viewLength - offset - elementSize) / *stride;
-    if (!fits) {
-      const double needed = double(offset) + double(*stride) * double(count - 1) + double(elementSize);
-      fail(what + " reads past the end of bufferView " + std::to_string(viewIndex) + ": " + std::to_string(count) +
-           " elements need " + std::to_string(std::uint64_t(needed)) + " bytes, the view has " +
-           std::to_string(viewLength) + " (wrong accessor count or offset?)");
-    }
-    return data + offset;
-  }
-
-  // Every element of accessor `index` (dense data with sparse substitutions applied), each
-  // converted by read(bytes) to T. Fails on any out-of-bounds read.
-  template <typename T, typename Read>
-  std::vector<T> readElements(const tinygltf::Accessor& acc, size_t elementSize, const std::string& what,
-                              Read read) const {
-    std::vector<T> out;
-    if (acc.bufferView >= 0) {
-      size_t stride = 0;
-      const unsigned char* p = locate(acc.bufferView, acc.byteOffset, acc.count, elementSize, &stride, what);
-      out.resize(acc.count);
-      for (size_t i = 0; i < acc.count; ++i) out[i] = read(p + i * stride);
-    } else {
-      // No bufferView: all zeros (then usually sparse). Cap the count: nothing bounds it otherwise.
-      if (acc.count > (size_t(1) << 24))
-        fail(what + ": accessor count " + std::to_string(acc.count) + " is implausibly large");
-      out.assign(acc.count, read(nullptr));
-    }
-    if (acc.sparse.isSparse) {
-      const auto& s = acc.sparse;
-      const size_t n = size_t(std::max(s.count, 0));
-      if (n > acc.count)
-        fail(what + ": the sparse substitution overrides " + std::to_string(n) +
-             " elements, more than the accessor's " + std::to_string(acc.count));
-      if (!isIndexType(s.indices.componentType))
-        fail(what + ": sparse indices have component type " + std::to_string(s.indices.componentType) +
-             ", expected an unsigned integer type");
-      const size_t indexSize = componentSize(s.indices.componentType);
-      size_t indexStride = indexSize, valueStride = elementSize;  // sparse data is always tightly packed
-      const unsigned char* indices = locate(s.indices.bufferView, size_t(std::max(s.indices.byteOffset, 0)), n,
-                                            indexSize, &indexStride, what + " (sparse indices)");
-      const unsigned char* values = locate(s.values.bufferView, size_t(std::max(s.values.byteOffset, 0)), n,
-                                           elementSize, &valueStride, what + " (sparse values)");
-      std::uint32_t previous = 0;
-      for (size_t k = 0; k < n; ++k) {
-        const std::uint32_t target = readIndex(indices + k * indexSize, s.indices.componentType);
-        if (target >= out.size())
-          fail(what + ": sparse index " + std::to_string(target) + " is out of range (the accessor has " +
-               std::to_string(out.size()) + " elements)");
-        // Strictly increasing (glTF): with a repeated index, which value wins would be up to the reader.
-        if (k > 0 && target <= previous)
-          fail(what + ": sparse indices are not strictly increasing (" + std::to_string(target) + " after " +
-               std::to_string(previous) + ")");
-        previous = target;
-        out[target] = read(values + k * elementSize);
-      }
-    }
-    return out;
-  }
-
-  // Accessor `index` as `components` floats per element (VEC2/VEC3...), any legal component type.
-  template <int N>
-  std::vector<glm::vec<N, float>> readAccessor(int index, const std::string& what) const {
-    const tinygltf::Accessor& acc = accessor(index, what);
-    const std::string where = what + " (accessor " + std::to_string(index) + ")";
-    if (componentCount(acc.type) != N)
-      fail(where + " has " + std::to_string(componentCount(acc.type)) + " components per element, expected " +
-           std::to_string(N));
-    const size_t size = componentSize(acc.componentType);
-    if (size == 0) fail(where + " has unsupported component type " + std::to_string(acc.componentType));
-    if (acc.normalized && (acc.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                           acc.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-      fail(where + " is normalized with component type " + componentTypeName(acc.componentType) +
-           " (only byte and short types can be normalized)");
-    const int type = acc.componentType;
-    const bool normalized = acc.normalized;
-    return readElements<glm::vec<N, float>>(acc, N * size, where, [&](const unsigned char* p) {
-      glm::vec<N, float> v(0.0f);
-      if (p)
-        for (int c = 0; c < N; ++c) v[c] = readComponent(p + c * size, type, normalized);
-      return v;
-    });
-  }
-
-  std::vector<std::uint32_t> readIndices(int index, const std::string& what) const {
-    const tinygltf::Accessor& acc = accessor(index, what);
-    const std::string where = what + " (accessor " + std::to_string(index) + ")";
-    if (acc.type != TINYGLTF_TYPE_SCALAR || !isIndexType(acc.componentType))
-      fail(where + " must be SCALAR unsigned byte/short/int, got type " + std::to_string(acc.type) +
-           " component type " + std::to_string(acc.componentType));
-    if (acc.bufferView >= 0 && size_t(acc.bufferView) < model_.bufferViews.size() &&
-        model_.bufferViews[acc.bufferView].byteStride != 0)
-      fail(where + ": its bufferView " + std::to_string(acc.bufferView) +
-           " has a byteStride, which index data must not have (indices are tightly packed)");
-    const int type = acc.componentType;
-    return readElements<std::uint32_t>(acc, componentSize(type), where,
-                                       [&](const unsigned char* p) { return p ? readIndex(p, type) : 0u; });
-  }
+  std::string nodeLabel(size_t i) const { return gltf::nodeLabel(model_, i); }
 
   // ---------------------------------------------------------------------------------------------
   // Meshes
@@ -783,7 +97,7 @@ class GltfLoader {
   }
 
   void loadMeshes() {
-    for (int nodeIndex : drawOrder_) {
+    for (int nodeIndex : nodes_.drawOrder) {
       const tinygltf::Node& node = model_.nodes[nodeIndex];
       if (node.mesh < 0) continue;
       if (size_t(node.mesh) >= model_.meshes.size())
@@ -793,67 +107,24 @@ class GltfLoader {
       for (size_t p = 0; p < mesh.primitives.size(); ++p)
         appendPrimitive(mesh.primitives[p],
                         label("mesh", size_t(node.mesh), mesh.name) + " primitive " + std::to_string(p),
-                        world_[nodeIndex]);
+                        nodes_.world[nodeIndex]);
     }
     if (triangleCount_ == 0) {
       size_t primitives = 0;
       for (const auto& m : model_.meshes) primitives += m.primitives.size();
       fail("the scene contains no triangles to render (" + std::to_string(model_.meshes.size()) + " meshes, " +
-           std::to_string(primitives) + " primitives, " + std::to_string(drawOrder_.size()) + " nodes in the scene)");
+           std::to_string(primitives) + " primitives, " + std::to_string(nodes_.drawOrder.size()) +
+           " nodes in the scene)");
     }
     chooseSceneOrigin();
   }
 
-  // Reads vertex attribute `name` after checking its accessor format against the specification
-  // (and KHR_mesh_quantization), its element count against POSITION's, and every value for NaN/Inf.
-  template <int N>
-  std::vector<glm::vec<N, float>> readAttribute(int accessorIndex, const std::string& name, const std::string& what,
-                                                size_t expectedCount) const {
-    const std::string where = what + " " + name;
-    const tinygltf::Accessor& acc = accessor(accessorIndex, where);
-    if (!allowedFormat(name, {acc.type, acc.componentType, acc.normalized}, meshQuantization_))
-      fail(where + " (accessor " + std::to_string(accessorIndex) + ") is " + typeName(acc.type) + " " +
-           (acc.normalized ? "normalized " : "") + componentTypeName(acc.componentType) + "; glTF allows " +
-           allowedFormatsText(name, meshQuantization_));
-    std::vector<glm::vec<N, float>> values = readAccessor<N>(accessorIndex, where);
-    if (expectedCount != size_t(-1) && values.size() != expectedCount)
-      fail(what + ": " + name + " has " + std::to_string(values.size()) + " elements but POSITION has " +
-           std::to_string(expectedCount));
-    for (size_t v = 0; v < values.size(); ++v)
-      if (!finiteVec(values[v]))
-        fail(what + ": " + name + " of vertex " + std::to_string(v) + " is not finite (NaN or Inf)");
-    return values;
-  }
-
-  // COLOR_0 as RGBA (VEC3 gets alpha 1).
-  std::vector<glm::vec4> readColors(int accessorIndex, const std::string& what, size_t expectedCount) const {
-    const tinygltf::Accessor& acc = accessor(accessorIndex, what + " COLOR_0");
-    if (acc.type == TINYGLTF_TYPE_VEC4) return readAttribute<4>(accessorIndex, "COLOR_0", what, expectedCount);
-    if (acc.type != TINYGLTF_TYPE_VEC3)  // let readAttribute word the error
-      return readAttribute<4>(accessorIndex, "COLOR_0", what, expectedCount);
-    const std::vector<glm::vec3> rgb = readAttribute<3>(accessorIndex, "COLOR_0", what, expectedCount);
-    std::vector<glm::vec4> rgba(rgb.size());
-    for (size_t i = 0; i < rgb.size(); ++i) rgba[i] = glm::vec4(rgb[i], 1.0f);
-    return rgba;
-  }
-
-  // The TEXCOORD set a texture reads: textureInfo.texCoord, overridden by KHR_texture_transform.texCoord.
-  static int effectiveTexCoord(const tinygltf::TextureInfo& info) {
-    const auto ext = info.extensions.find("KHR_texture_transform");
-    if (ext != info.extensions.end() && ext->second.IsObject() && ext->second.Has("texCoord") &&
-        ext->second.Get("texCoord").IsNumber())
-      return ext->second.Get("texCoord").GetNumberAsInt();
-    return info.texCoord;
-  }
-
-  // Transforms one primitive to world space (double) and appends its vertices (only those its
-  // triangles use) and triangles (to its material's bucket).
   // The primitive's triangles as corner indices (its indices, or 0..n-1, triangulated from strips and fans).
   std::vector<std::uint32_t> primitiveTriangles(const tinygltf::Primitive& prim, const std::string& what,
                                                 size_t vertexCount) {
     std::vector<std::uint32_t> indices;
     if (prim.indices >= 0) {
-      indices = readIndices(prim.indices, what + " indices");
+      indices = readIndices(model_, prim.indices, what + " indices");
       for (size_t k = 0; k < indices.size(); ++k)
         if (indices[k] >= vertexCount)
           fail(what + ": index " + std::to_string(indices[k]) + " (entry " + std::to_string(k) +
@@ -933,6 +204,8 @@ class GltfLoader {
     }
   }
 
+  // Transforms one primitive to world space (double) and appends its vertices (only those its
+  // triangles use) and triangles (to its material's bucket).
   void appendPrimitive(const tinygltf::Primitive& prim, const std::string& what, const glm::dmat4& world) {
     if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) {
       skippedPrimitives_.add(what);
@@ -948,7 +221,8 @@ class GltfLoader {
     const int positionAccessor = attribute("POSITION");
     if (positionAccessor < 0) fail(what + " has no POSITION attribute");
 
-    const std::vector<glm::vec3> positions = readAttribute<3>(positionAccessor, "POSITION", what, size_t(-1));
+    const std::vector<glm::vec3> positions =
+        readAttribute<3>(model_, positionAccessor, "POSITION", what, size_t(-1), meshQuantization_);
     const size_t vertexCount = positions.size();
 
     std::vector<std::uint32_t> tris = primitiveTriangles(prim, what, vertexCount);
@@ -959,14 +233,15 @@ class GltfLoader {
     std::vector<glm::vec2> texcoords[2];
     std::vector<glm::vec4> colors;
     if (const int a = attribute("NORMAL"); a >= 0)
-      normals = readAttribute<3>(a, "NORMAL", what, vertexCount);
+      normals = readAttribute<3>(model_, a, "NORMAL", what, vertexCount, meshQuantization_);
     else
       missingNormals_.add(what);
     if (const int a = attribute("TEXCOORD_0"); a >= 0)
-      texcoords[0] = readAttribute<2>(a, "TEXCOORD_0", what, vertexCount);
+      texcoords[0] = readAttribute<2>(model_, a, "TEXCOORD_0", what, vertexCount, meshQuantization_);
     if (const int a = attribute("TEXCOORD_1"); a >= 0)
-      texcoords[1] = readAttribute<2>(a, "TEXCOORD_1", what, vertexCount);
-    if (const int a = attribute("COLOR_0"); a >= 0) colors = readColors(a, what, vertexCount);
+      texcoords[1] = readAttribute<2>(model_, a, "TEXCOORD_1", what, vertexCount, meshQuantization_);
+    if (const int a = attribute("COLOR_0"); a >= 0)
+      colors = readColors(model_, a, what, vertexCount, meshQuantization_);
     checkTexCoordSets(prim, what, texcoords);
 
     // A mirroring transform turns counter-clockwise triangles clockwise: swap two corners so the
@@ -1022,183 +297,11 @@ class GltfLoader {
   }
 
   // ---------------------------------------------------------------------------------------------
-  // Materials and textures
-
-  void loadMaterials() {
-    scene_.materials.resize(model_.materials.size());
-    for (size_t i = 0; i < model_.materials.size(); ++i) {
-      const tinygltf::Material& src = model_.materials[i];
-      Material& dst = scene_.materials[i];
-      dst.name = src.name.empty() ? "material " + std::to_string(i) : src.name;
-      const std::string what = label("material", i, src.name);
-      const auto& bc = src.pbrMetallicRoughness.baseColorFactor;
-      if (bc.size() != 4) fail(what + " has a baseColorFactor that is not 4 numbers");
-      for (double c : bc)
-        if (!(c >= 0.0 && c <= 1.0)) fail(what + " has a baseColorFactor component " + number(c) + " outside [0, 1]");
-      dst.baseColorFactor = glm::vec4(bc[0], bc[1], bc[2], bc[3]);
-      glm::vec3 emissive(0.0f);
-      if (src.emissiveFactor.size() == 3)
-        emissive = glm::vec3(src.emissiveFactor[0], src.emissiveFactor[1], src.emissiveFactor[2]);
-      else if (!src.emissiveFactor.empty())
-        fail(what + " has an emissiveFactor that is not 3 numbers");
-      for (double c : src.emissiveFactor)
-        if (!(c >= 0.0 && c <= 1.0)) fail(what + " has an emissiveFactor component " + number(c) + " outside [0, 1]");
-      if (src.alphaMode == "OPAQUE") {
-        dst.alphaMode = AlphaMode::Opaque;
-      } else if (src.alphaMode == "MASK") {
-        dst.alphaMode = AlphaMode::Mask;
-      } else if (src.alphaMode == "BLEND") {
-        dst.alphaMode = AlphaMode::Blend;
-        blendMaterials_.add(dst.name);
-      } else {
-        fail(what + " has alphaMode '" + src.alphaMode + "' (expected OPAQUE, MASK or BLEND)");
-      }
-      if (!(src.alphaCutoff >= 0.0) || !fitsFloat(src.alphaCutoff))
-        fail(what + " has alphaCutoff " + number(src.alphaCutoff) + " (must be a finite number >= 0)");
-      dst.alphaCutoff = float(src.alphaCutoff);
-      dst.doubleSided = src.doubleSided;
-      // KHR_materials_emissive_strength scales emissiveFactor (glTF caps the factor at 1).
-      const auto ext = src.extensions.find("KHR_materials_emissive_strength");
-      if (ext != src.extensions.end() && ext->second.Has("emissiveStrength")) {
-        const tinygltf::Value& strength = ext->second.Get("emissiveStrength");
-        if (!strength.IsNumber() || !(strength.GetNumberAsDouble() >= 0.0) || !fitsFloat(strength.GetNumberAsDouble()))
-          fail(label("material", i, src.name) +
-               ": KHR_materials_emissive_strength.emissiveStrength must be a number >= 0");
-        emissive *= float(strength.GetNumberAsDouble());
-      }
-      if (!finite(emissive) || glm::any(glm::lessThan(emissive, glm::vec3(0.0f))))
-        fail(label("material", i, src.name) + " has a negative or non-finite emission");
-      dst.emission = emissive;
-      // Textures are decoded only for materials the displayed triangles use.
-      if (i < trianglesByMaterial_.size() && !trianglesByMaterial_[i].empty()) {
-        dst.baseColorTexture = textureFor(src.pbrMetallicRoughness.baseColorTexture, dst.name, "base colour");
-        dst.emissiveTexture = textureFor(src.emissiveTexture, dst.name, "emissive");
-        dst.baseColorTexCoord = effectiveTexCoord(src.pbrMetallicRoughness.baseColorTexture);
-        dst.emissiveTexCoord = effectiveTexCoord(src.emissiveTexture);
-        dst.baseColorUvTransform =
-            uvTransform(src.pbrMetallicRoughness.baseColorTexture, what + " base colour texture");
-        dst.emissiveUvTransform = uvTransform(src.emissiveTexture, what + " emissive texture");
-      }
-    }
-    if (defaultMaterial_ >= 0 || scene_.materials.empty()) {
-      // glTF's default material is white; grey keeps a scene without materials readable.
-      Material grey;
-      grey.name = "default";
-      grey.baseColorFactor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
-      if (defaultMaterial_ < 0) defaultMaterial_ = int(scene_.materials.size());
-      scene_.materials.push_back(grey);
-    }
-  }
-
-  // KHR_texture_transform of a texture slot as a 3x3 matrix on (u, v, 1): translation * rotation *
-  // scale, rotation counter-clockwise by `rotation` radians (the extension's definition).
-  glm::mat3 uvTransform(const tinygltf::TextureInfo& info, const std::string& what) const {
-    const auto ext = info.extensions.find("KHR_texture_transform");
-    if (info.index < 0 || ext == info.extensions.end()) return glm::mat3(1.0f);
-    const tinygltf::Value& t = ext->second;
-    const auto vec2 = [&](const char* key, glm::dvec2 fallback) {
-      if (!t.Has(key)) return fallback;
-      const tinygltf::Value& v = t.Get(key);
-      if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
-        fail(what + ": KHR_texture_transform." + key + " must be 2 numbers");
-      return glm::dvec2(v.Get(0).GetNumberAsDouble(), v.Get(1).GetNumberAsDouble());
-    };
-    const glm::dvec2 offset = vec2("offset", glm::dvec2(0.0)), scale = vec2("scale", glm::dvec2(1.0));
-    double rotation = 0.0;
-    if (t.Has("rotation")) {
-      if (!t.Get("rotation").IsNumber()) fail(what + ": KHR_texture_transform.rotation must be a number");
-      rotation = t.Get("rotation").GetNumberAsDouble();
-    }
-    for (double v : {offset.x, offset.y, scale.x, scale.y, rotation})
-      if (!fitsFloat(v)) fail(what + ": KHR_texture_transform has a non-finite number " + number(v));
-    const double c = std::cos(rotation), s = std::sin(rotation);
-    // Columns of translation * rotation * scale (column-major, as GLSL's mat3).
-    return glm::mat3(glm::vec3(float(c * scale.x), float(s * scale.x), 0.0f),
-                     glm::vec3(float(-s * scale.y), float(c * scale.y), 0.0f),
-                     glm::vec3(float(offset.x), float(offset.y), 1.0f));
-  }
-
-  // Index into scene_.textures for a material's texture slot, -1 when absent or unusable (with
-  // a warning: a missing texture costs detail, not the scene).
-  int textureFor(const tinygltf::TextureInfo& info, const std::string& material, const char* slot) {
-    if (info.index < 0) return -1;
-    if (size_t(info.index) >= model_.textures.size())
-      fail("material '" + material + "' " + slot + " texture refers to texture " + std::to_string(info.index) +
-           ", but the file has " + std::to_string(model_.textures.size()) + " textures");
-    const int texCoord = effectiveTexCoord(info);
-    if (texCoord < 0) fail("material '" + material + "' " + slot + " texture has a negative texCoord");
-    if (texCoord > 1) {
-      scene_.warnings.push_back("material '" + material + "': " + slot + " texture uses TEXCOORD_" +
-                                std::to_string(texCoord) +
-                                "; only TEXCOORD_0 and TEXCOORD_1 are loaded, so the texture is ignored");
-      return -1;
-    }
-    const int source = model_.textures[info.index].source;
-    if (source < 0) {
-      scene_.warnings.push_back("material '" + material + "': texture " + std::to_string(info.index) +
-                                " has no image source this loader can read; using the factor only");
-      return -1;
-    }
-    if (size_t(source) >= model_.images.size())
-      fail("texture " + std::to_string(info.index) + " refers to image " + std::to_string(source) +
-           ", but the file has " + std::to_string(model_.images.size()) + " images");
-    if (imageTexture_.empty()) imageTexture_.assign(model_.images.size(), kNotDecoded);
-    if (imageTexture_[source] == kNotDecoded) imageTexture_[source] = decodeImage(size_t(source), material);
-    return imageTexture_[source];
-  }
-
-  // Decodes image `i` into scene_.textures (8-bit RGBA); -1 plus a warning if it cannot be had.
-  int decodeImage(size_t i, const std::string& material) {
-    const tinygltf::Image& image = model_.images[i];
-    const std::string name = !image.name.empty()  ? image.name
-                             : !image.uri.empty() ? image.uri
-                                                  : "image " + std::to_string(i);
-    std::vector<unsigned char> fileBytes;
-    const unsigned char* bytes = nullptr;
-    size_t size = 0;
-    if (image.bufferView >= 0) {
-      bytes = bufferViewData(image.bufferView, "image " + std::to_string(i), &size);
-    } else if (image.as_is) {  // data URI, kept encoded by keepEncodedImage
-      bytes = image.image.data();
-      size = image.image.size();
-    } else if (!image.uri.empty()) {
-      const fs::path file = path_.parent_path() / fs::u8path(percentDecode(image.uri));
-      std::ifstream in(file, std::ios::binary);
-      if (!in) {
-        scene_.warnings.push_back("texture image '" + image.uri + "' not found (" + file.string() + "); material '" +
-                                  material + "' uses its factor only");
-        return -1;
-      }
-      fileBytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-      bytes = fileBytes.data();
-      size = fileBytes.size();
-    }
-    int width = 0, height = 0, channels = 0;
-    stbi_uc* pixels = nullptr;
-    if (bytes && size > 0 && size < size_t(std::numeric_limits<int>::max()))
-      pixels = stbi_load_from_memory(bytes, int(size), &width, &height, &channels, 4);
-    if (!pixels) {
-      scene_.warnings.push_back("texture image '" + name + "' cannot be decoded (" +
-                                (bytes && size ? std::string(stbi_failure_reason()) : std::string("no data")) +
-                                "); material '" + material + "' uses its factor only");
-      return -1;
-    }
-    Texture texture;
-    texture.name = name;
-    texture.width = width;
-    texture.height = height;
-    texture.rgba.assign(pixels, pixels + size_t(width) * size_t(height) * 4);
-    stbi_image_free(pixels);
-    scene_.textures.push_back(std::move(texture));
-    return int(scene_.textures.size() - 1);
-  }
-
-  // ---------------------------------------------------------------------------------------------
   // Lights and cameras
 
   // A node's position in scene space (world minus the scene origin, in double, then float).
   glm::vec3 worldPosition(int node) const {
-    const glm::dvec3 world(world_[node][3]);
+    const glm::dvec3 world(nodes_.world[node][3]);
     for (int c = 0; c < 3; ++c)
       if (!fitsFloat(world[c])) fail(nodeLabel(size_t(node)) + " has a position beyond float range");
     return glm::vec3(world - scene_.origin);
@@ -1206,14 +309,14 @@ class GltfLoader {
 
   // The node's -Z axis in world space (lights and cameras look down their local -Z).
   glm::vec3 worldForward(int node) const {
-    const glm::dvec3 d = glm::dmat3(world_[node]) * glm::dvec3(0.0, 0.0, -1.0);
+    const glm::dvec3 d = glm::dmat3(nodes_.world[node]) * glm::dvec3(0.0, 0.0, -1.0);
     const double length = glm::length(d);
     if (!(length > 0.0) || !std::isfinite(length)) fail(nodeLabel(node) + " has a degenerate transform (zero scale)");
     return glm::vec3(d / length);
   }
 
   void loadLights() {
-    for (int nodeIndex : drawOrder_) {
+    for (int nodeIndex : nodes_.drawOrder) {
       const tinygltf::Node& node = model_.nodes[nodeIndex];
       const auto ext = node.extensions.find("KHR_lights_punctual");
       if (ext == node.extensions.end()) continue;
@@ -1272,7 +375,7 @@ class GltfLoader {
 
   void loadCameras() {
     std::vector<char> used(model_.cameras.size(), 0);
-    for (int nodeIndex : drawOrder_) {
+    for (int nodeIndex : nodes_.drawOrder) {
       const tinygltf::Node& node = model_.nodes[nodeIndex];
       if (node.camera < 0) continue;
       if (size_t(node.camera) >= model_.cameras.size())
@@ -1301,7 +404,7 @@ class GltfLoader {
       camera.position = worldPosition(nodeIndex);
       // Orthonormalise (Gram-Schmidt from the view axis): node scale and shear must not skew the view,
       // and right = up x back keeps the basis right-handed even under a mirroring parent.
-      const glm::dmat3 m(world_[nodeIndex]);
+      const glm::dmat3 m(nodes_.world[nodeIndex]);
       const glm::dvec3 back = -glm::dvec3(worldForward(nodeIndex));
       glm::dvec3 up = m[1] - glm::dot(m[1], back) * back;
       if (!(glm::length(up) > 1e-12)) fail(what + ": its node transform is degenerate");
@@ -1344,19 +447,15 @@ class GltfLoader {
     for (const glm::vec3& p : scene_.positions) scene_.bounds.extend(p);
   }
 
-  static constexpr int kNotDecoded = -2;
-
   fs::path path_;
   tinygltf::Model model_;
   Scene scene_;
-  std::vector<glm::dmat4> world_;           // per node; identity for nodes outside the displayed scene
+  SceneNodes nodes_;
   std::vector<glm::dvec3> worldPositions_;  // vertices in world space until chooseSceneOrigin()
   bool meshQuantization_ = false;           // KHR_mesh_quantization used: more attribute formats allowed
-  std::vector<int> drawOrder_;              // nodes of the displayed scene, depth first
   std::vector<std::vector<std::uint32_t>> trianglesByMaterial_;
   size_t triangleCount_ = 0;
-  int defaultMaterial_ = -1;       // slot of the added default material, -1 if none is needed yet
-  std::vector<int> imageTexture_;  // image → texture index, -1 failed, kNotDecoded
+  int defaultMaterial_ = -1;  // slot of the added default material, -1 if none is needed yet
   WarningGroup missingNormals_{"primitives without NORMAL: flat face normals generated"};
   WarningGroup badNormals_{"zero or non-finite vertex normals replaced by face normals"};
   WarningGroup blendMaterials_{"alphaMode BLEND is rendered opaque (one surface per pixel in a deferred renderer)"};
@@ -1364,10 +463,13 @@ class GltfLoader {
 };
 
 }  // namespace
+}  // namespace gltf
 
 Scene loadScene(const std::filesystem::path& path) {
   try {
-    return GltfLoader(path).load();
+    return gltf::GltfLoader(path).load();
+  } catch (const gltf::FileProblem& problem) {
+    throw SceneLoadError(path.string() + ": " + problem.what());
   } catch (const SceneLoadError&) {
     throw;
   } catch (const std::bad_alloc&) {
