@@ -5,7 +5,7 @@
 // TINYGLTF_NO_EXTERNAL_IMAGE / TINYGLTF_NO_STB_IMAGE / TINYGLTF_NO_STB_IMAGE_WRITE (set on the
 // lgh_engine target in render/CMakeLists.txt), tinygltf only parses the JSON and loads buffers;
 // external images keep their URI, and embedded ones are handed to the loader's callback, which
-// keeps the encoded bytes. gltf_loader.cpp decodes what the materials reference.
+// keeps the encoded bytes. gltf_materials.cpp decodes what the materials reference.
 #define TINYGLTF_IMPLEMENTATION
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
