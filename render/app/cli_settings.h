@@ -3,6 +3,7 @@
 // --name options shown by --help, advanced ones as --name options shown by --help-all only, ablations
 // through --set NAME=VALUE only (which sets any setting), listed by --help-all.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstring>
 #include <sstream>
 #include <string>
@@ -34,7 +35,9 @@ inline std::string addSettingsOptions(CLI::App& app, RenderSettings& settings, c
   visitSettings(settings, [&](auto& value, const SettingInfo& info) {
     using T = std::decay_t<decltype(value)>;
     if (info.tier == SettingTier::Ablation) {
-      ablations += "  " + std::string(info.name) + "=" + settingValueText(value) + "  " + info.help + "\n";
+      std::string assignment = std::string(info.name) + "=" + settingValueText(value);
+      assignment.resize(std::max<size_t>(assignment.size() + 2, 38), ' ');  // the help in one column
+      ablations += "  " + assignment + info.help + "\n";
       return;
     }
     const std::string flag = std::string("--") + info.name;
