@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # One entry point for a fresh Debian 12 machine. Installs missing packages (apt-get, as root or via
 # sudo), configures and builds in ./build (Release), then:
-#   ./setup.sh render [lgh-render options]   renders the default scene to cornell_box.png
-#   ./setup.sh test   [ctest options]        runs the whole test suite
-#   ./setup.sh build                         only installs and builds
+#   ./setup.sh render [lgh-render options]   builds lgh-render only, renders the default scene to cornell_box.png
+#   ./setup.sh test   [ctest options]        builds everything, runs the whole test suite
+#   ./setup.sh build                         only installs and builds everything
 # Every step is idempotent: a second run installs nothing and rebuilds only what changed.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -34,16 +34,19 @@ install_missing() {
   "${sudo[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
 }
 
+# build [TARGET...]: the named targets and what they need, or everything.
 build() {
+  local targets=()
+  [ $# -eq 0 ] || targets=(--target "$@")
   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-  cmake --build build -j"$(nproc)"
+  cmake --build build -j"$(nproc)" "${targets[@]}"
 }
 
 command=${1:-}
 shift || true
 case "$command" in
   render)
-    install_missing && build
+    install_missing && build lgh-render
     ./build/lgh-render data/cornell_box.gltf -o cornell_box.png "$@" ;;
   test)
     install_missing && build
