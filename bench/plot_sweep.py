@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Plots and the README's numbers from `lgh-bench sweep` (bench/sweep_bench.cpp).
+"""Plots and the numbers of docs/measurements.md from `lgh-bench sweep` (bench/sweep_bench.cpp).
 
     python3 bench/plot_sweep.py bench/results/sweep.csv [--out DIR]
 

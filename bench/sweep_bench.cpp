@@ -206,8 +206,8 @@ void addRunOptions(CLI::App& command, SweepOptions& options) {
   command.add_option("--set", options.set, "NAME=VALUE: any other render setting for every point (e.g. bounces=1)");
 }
 
-// The README's sweep (--preset readme): both shipped scenes at 10K and 100K VPLs, its own grid unless
-// one is given, the scaling series, results into bench/results.
+// The published sweep (--preset readme, docs/measurements.md): both shipped scenes at 10K and 100K VPLs, its own grid
+// unless one is given, the scaling series, results into bench/results.
 std::vector<PointSpec> applyReadmePreset(SweepOptions& options, const std::function<bool(const char*)>& given) {
   const fs::path sharedScenes = fs::path(LGH_SHARED_SCENES_DIR).lexically_normal();
   if (!given("--scene")) {
@@ -252,8 +252,9 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options) {
   options.command = command;
   command
       ->add_option("--preset", options.preset,
-                   "readme: the README's sweep (sponza_sun@atrium and cornell_emissive, 10K and 100K VPLs, "
-                   "~20 min); smoke: a tiny run for ctest. Options given explicitly override the preset's")
+                   "readme: the published sweep of docs/measurements.md (sponza_sun@atrium and cornell_emissive, 10K "
+                   "and 100K VPLs, 15-35 min on 2 cores); smoke: a tiny run for ctest. Options given explicitly "
+                   "override the preset's")
       ->check(CLI::IsMember({"readme", "smoke"}));
   command->add_option("--scene", options.scenes, "glTF scene, PATH or PATH@CAMERA (repeatable)");
   options.settings.image.width = 320;  // the sweep's default image

@@ -9,7 +9,7 @@
 // subsampling (brute force over a random M of the N lights, scaled by N / M), unshadowed, with
 // exact visibility per light, and with the frame's own shadow estimate. Writes sweep.csv and
 // sweep.json (and .npy images for the plots); bench/plot_sweep.py turns them into plots and the
-// README's numbers. A progress bar with the time left goes to stderr.
+// numbers in docs/measurements.md. A progress bar with the time left goes to stderr.
 
 #include <CLI/CLI.hpp>
 #include <cstddef>

@@ -26,8 +26,8 @@ struct PointSpec {
 std::vector<PointSpec> grid(const std::vector<float>& alphas, const std::vector<int>& starts,
                             const std::vector<int>& ns, const std::vector<int>& ks, const std::vector<bool>& filters,
                             const std::vector<int>& frames = {1});
-// The README's sweep: alpha x start level x interleaving (1, 4), without shadows (k = 0) and with k = 4
-// and the filter; then one parameter at a time around the defaults (alpha 1, S1, 1x1, k 4).
+// The published sweep (docs/measurements.md): alpha x start level x interleaving (1, 4), without shadows (k = 0) and
+// with k = 4 and the filter; then one parameter at a time around the defaults (alpha 1, S1, 1x1, k 4).
 std::vector<PointSpec> readmePoints();
 
 std::string settingsLabel(const PointSpec& p);  // "a=1 S1 4x4 k=4", " raw" without the filter, " 16 frames"

@@ -43,12 +43,13 @@ struct HierarchySettings {
 
 // The light pass (LightVolumePass) and its interleaving (InterleavePass).
 struct LightPassSettings {
-  float alpha = 1.0f;         // R_l = alpha h_l
-  int startLevel = 1;         // finest level blended: 1 (S1) or 0 (S0)
-  int interleave = 1;         // n x n interleaved sampling
-  bool overdraw = false;      // count fragments per pixel (AOV "overdraw")
-  bool bruteForce = false;    // every S0 light at every pixel, weight 1 (exact unshadowed)
-  bool volumeCulling = true;  // sphere-bounding rectangles depth-tested against the surfaces; false: the paper's cubes
+  float alpha = 1.0f;       // R_l = alpha h_l
+  int startLevel = 1;       // finest level blended: 1 (S1) or 0 (S0)
+  int interleave = 1;       // n x n interleaved sampling
+  bool overdraw = false;    // count fragments per pixel (AOV "overdraw")
+  bool bruteForce = false;  // every S0 light at every pixel, weight 1 (exact unshadowed)
+  bool volumeCulling =
+      true;  // depth-culled screen octagons of the 2R spheres (icosahedra around the camera); false: cubes
 };
 
 // Indirect shadows: the light pass's selection of k lights per pixel and the shadow rays to them. The

@@ -12,7 +12,7 @@
 // This file assembles the scene; the helpers report problems as gltf::FileProblem without the path,
 // and loadScene turns them into SceneLoadError("<path>: <problem>").
 // Strictness: what the glTF 2.0 specification forbids and would change the image (the Khronos
-// validator's errors that apply to what this renderer reads; README "Strict glTF 2.0") ends in
+// validator's errors that apply to what this renderer reads; docs/gltf.md, "Strict glTF 2.0") ends in
 // SceneLoadError. Numbers are checked where they become float: a JSON value such as 1e39 is a
 // finite double but an infinite float.
 #include <tiny_gltf.h>

@@ -242,7 +242,7 @@ TEST_F(LightPassTest, InterleavedBruteForceDrawsEachLightIntoOneTile) {
   EXPECT_LE(frame.stats.lights.maxRasterized, unsigned((count + 15) / 16));
 }
 
-// Volume culling (screen rectangles of the 2R spheres, depth-tested against the surfaces) skips only
+// Volume culling (screen octagons of the 2R spheres, depth-tested against the surfaces) skips only
 // fragments whose blending weight is zero: the image equals the cube path's to 1e-4 per pixel, the
 // fragments that shade are the same ones (same count), and fewer are rasterized. Checked at 1x1 and
 // 4x4 (the tiles need their own depth), from S1 and from S0, and with the camera inside volumes, where

@@ -148,7 +148,8 @@ TEST_F(PinnedFramesTest, DefaultSettingsWithCubeVolumes) {
 }
 
 // Interleaved 2 x 2 with alpha 2 and fixed levels, one uniformly picked shadow sample with S1
-// selectable, shadow rays to cluster centres (no jitter), no filter.
+// selectable (the uniform estimator: rays to drawn input lights, so the spread of 0 changes nothing), no
+// filter.
 TEST_F(PinnedFramesTest, InterleavedUniformSelection) {
   settings.lightPass.interleave = 2;
   settings.lightPass.alpha = 2.0f;
