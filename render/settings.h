@@ -48,7 +48,8 @@ struct LightPassSettings {
   int interleave = 1;         // n x n interleaved sampling
   bool overdraw = false;      // count fragments per pixel (AOV "overdraw")
   bool bruteForce = false;    // every S0 light at every pixel, weight 1 (exact unshadowed)
-  bool volumeCulling = true;  // sphere-bounding rectangles depth-tested against the surfaces; false: the paper's cubes
+  bool volumeCulling = true;  // depth-culled screen octagons of the 2R sphere (icosahedra when the sphere
+                              // holds the camera); false: the paper's cubes
 };
 
 // Indirect shadows: the light pass's selection of k lights per pixel and the shadow rays to them. The
