@@ -161,10 +161,8 @@ void main() {
       // The light's selection importance c'_l, as the light pass computed it (light_volume.frag).
       float d = distance(light.position, s.position);
       float blend = blendWeight(role, d, R);
-      vec3 e = blend * lightContribution(light.position, light.intensity, light.meanNormal, light.omniFraction,
-                                         s.position, s.normal, clampDistance);
-      float importance = selectionImportance(e, light.intensity, blend, d, clampDistance, gridLight ? defensive : 0.0);
-      if (uniformSelection != 0) importance = importance > 0.0 ? 1.0 : 0.0;
+      LightSelection lit = lightSelection(light, s.position, s.normal, d, blend, gridLight, clampDistance, defensive,
+                                          uniformSelection != 0);
       // What it adds here: the selection drew grid light g in proportion to c'_g, but what g's input
       // lights add is a_g sum_i share_i B_l(|x - p_i|) G_i(x) (blend a_g sum_i share_i G_i(x) without
       // blendTargets), estimated by drawnFactor. Weighing the sample by their quotient makes the weighted
@@ -172,8 +170,8 @@ void main() {
       // one weighted by the centres.
       float added = weighTargets != 0 && drawnFactor >= 0.0
                         ? (blendTargets != 0 ? 1.0 : blend) * luminance(light.intensity) * drawnFactor
-                        : luminance(e);
-      float weight = importance > 0.0 ? added / importance : 0.0;
+                        : luminance(lit.irradiance);
+      float weight = lit.importance > 0.0 ? added / lit.importance : 0.0;
       weights += weight;
       squares += weight * weight;
       // The sample adds nothing here (no drawn light reaches x): a ray would decide nothing.
