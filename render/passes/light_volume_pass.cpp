@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -47,10 +46,8 @@ void ShadowSlots::allocate(glm::ivec2 targetSize, int samples) {
   size = targetSize;
 }
 
-LightVolumePass::LightVolumePass(bool floatAtomics) : floatAtomics_(floatAtomics) {
-  GLint alignment = 256;
-  glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
-  uniformStride_ = (sizeof(gpu::LightPassUniforms) + size_t(alignment) - 1) / size_t(alignment) * size_t(alignment);
+LightVolumePass::LightVolumePass(bool floatAtomics)
+    : floatAtomics_(floatAtomics), uniforms_(sizeof(gpu::LightPassUniforms)) {
   maxBlockLights_ = gl::storageBlockElements(sizeof(gpu::GpuLight));  // chunks of S0 start aligned
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
@@ -161,12 +158,11 @@ std::vector<LightVolumePass::Draw> LightVolumePass::drawList(const gl::Buffer& l
 void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy,
                                      const LightPassOptions& options, const TileLayout& layout, int L,
                                      unsigned drawnTargets) {
-  gl::ensureSize(uniforms_, std::max<size_t>(draws.size(), 1) * uniformStride_);
-  std::vector<unsigned char> staging(std::max<size_t>(draws.size(), 1) * uniformStride_, 0);
+  std::vector<gpu::LightPassUniforms> blocks(draws.size());
   const int n = layout.tilesPerAxis;
   for (size_t i = 0; i < draws.size(); ++i) {
     const Draw& d = draws[i];
-    gpu::LightPassUniforms u{};
+    gpu::LightPassUniforms& u = blocks[i];
     u.alpha = options.pass.alpha;
     u.topCellSize = float(hierarchy.grid.topCellSize);
     u.clampDistance = options.clampDistance;
@@ -192,9 +188,8 @@ void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHi
     u.tileRotation = options.tileRotation % unsigned(n * n);
     u.defensive = options.shadows.defensive;
     for (int l = 1; l <= L; ++l) u.levelOffsets[l / 4][l % 4] = unsigned(hierarchy.levels[size_t(l)].offset);
-    std::memcpy(staging.data() + i * uniformStride_, &u, sizeof(u));
   }
-  uniforms_.update(staging.data(), staging.size());
+  uniforms_.upload(blocks);
 }
 
 // Clears and binds what the fragments write (irradiance, fragment counts, shadow slots) and read (the
@@ -265,7 +260,7 @@ void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPass
     const Draw& d = draws[i];
     const size_t stride = d.s0Input ? sizeof(gpu::GpuLight) : sizeof(gpu::GpuGridLight);
     d.buffer->bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, d.boundOffset * stride, d.boundLights * stride);
-    uniforms_.bindRange(GL_UNIFORM_BUFFER, LGH_UBO_PASS, i * uniformStride_, sizeof(gpu::LightPassUniforms));
+    uniforms_.bind(i, LGH_UBO_PASS);
     program(d, options, countUnselectable).use();
     if (d.shape == gpu::kVolumeCube)
       glEnable(GL_CULL_FACE);

@@ -22,6 +22,7 @@
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
 #include "render/gl/texture.h"
+#include "render/gl/uniform_blocks.h"
 #include "render/passes/interleave_pass.h"
 #include "render/passes/lgh_build_pass.h"
 #include "render/passes/shadow_targets_pass.h"
@@ -104,12 +105,11 @@ class LightVolumePass {
 
   bool floatAtomics_;
   std::map<std::string, gl::Program> programs_;  // by their defines, compiled on first use
-  gl::Buffer uniforms_;                          // one LightPassUniforms per draw, at aligned offsets
-  size_t uniformStride_ = 0;
-  size_t maxBlockLights_ = 0;               // S0 lights per storage block binding
-  gl::VertexArrayHandle emptyVertexArray_;  // draws take their vertices from gl_VertexID
-  VolumeCulling culling_;                   // depth, slices, pyramid and sorting for culled volumes
-  gl::Framebuffer framebuffer_;             // irradiance (+ culling depth-stencil), made by each execute
+  gl::UniformBlocks uniforms_;                   // one gpu::LightPassUniforms per draw
+  size_t maxBlockLights_ = 0;                    // S0 lights per storage block binding
+  gl::VertexArrayHandle emptyVertexArray_;       // draws take their vertices from gl_VertexID
+  VolumeCulling culling_;                        // depth, slices, pyramid and sorting for culled volumes
+  gl::Framebuffer framebuffer_;                  // irradiance (+ culling depth-stencil), made by each execute
 };
 
 }  // namespace lgh
