@@ -151,6 +151,26 @@ LightPassOptions Renderer::lightPassOptions() const {
   return o;
 }
 
+ShadowRayOptions Renderer::shadowRayOptions(const LightPassOptions& lightPass) {
+  ShadowRayOptions o;
+  o.shadows = lightPass.shadows;
+  o.alpha = lightPass.pass.alpha;
+  o.startLevel = lightPass.pass.startLevel;
+  o.bruteForce = lightPass.pass.bruteForce;
+  o.clampDistance = lightPass.clampDistance;
+  o.frameSeed = lightPass.frameSeed;
+  return o;
+}
+
+ShadowFilterOptions Renderer::shadowFilterOptions() const {
+  ShadowFilterOptions o;
+  o.filter = settings_.filter;
+  o.correction = {shadowEstimator_.correctIrradiance, shadowEstimator_.correctionError};
+  // Less filtering where the ratio holds more frames.
+  o.sigmaFade = accumulating() ? settings_.accumulation.filterFade : 0.0f;
+  return o;
+}
+
 LightPassTarget Renderer::lightPassTarget() {
   const TileLayout layout =
       interleaved() ? tiles_.layout : TileLayout::of(1, settings_.image.width, settings_.image.height);
@@ -213,8 +233,9 @@ FrameStats Renderer::render(const CameraView& view) {
     // Shadow rays to the picked lights: the raw visibility ratio.
     if (shadowed())
       timed(passes::kShadowRays, [&] {
-        shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, target.layout, inputLights_.lights, hierarchy_,
-                               shadowTargets_, options, target.irradiance, rawRatio_);
+        shadowRayPass_.execute({scene_, gbuffer_, inputLights_.lights, hierarchy_, shadowTargets_, shadowSlots_,
+                                target.layout, target.irradiance},
+                               shadowRayOptions(options), rawRatio_);
       });
     // Temporal accumulation: this frame's raw irradiance and ratio added to the history reprojected from
     // the last frame; the accumulated estimates replace them for the filter and the composite.
@@ -227,8 +248,7 @@ FrameStats Renderer::render(const CameraView& view) {
     // where the ratio holds more frames).
     if (shadowed())
       timed(passes::kShadowFilter, [&] {
-        shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, irradianceCorrection(),
-                                  visibility_, accumulating() ? settings_.accumulation.filterFade : 0.0f);
+        shadowFilterPass_.execute({gbuffer_, rawRatio_, irradiance_}, shadowFilterOptions(), visibility_);
       });
     stats.lights = lightStats(draws);
   }

@@ -46,6 +46,11 @@ void ShadowSlots::allocate(glm::ivec2 targetSize, int samples) {
   size = targetSize;
 }
 
+unsigned selectionFlags(const ShadowEstimator& shadows) {
+  return (shadows.skipFinest ? gpu::kSelectSkipFinest : 0u) | (shadows.uniformSelection ? gpu::kSelectUniform : 0u) |
+         (shadows.blendTargets ? gpu::kSelectBlendTargets : 0u);
+}
+
 LightVolumePass::LightVolumePass(bool floatAtomics)
     : floatAtomics_(floatAtomics), uniforms_(sizeof(gpu::LightPassUniforms)) {
   maxBlockLights_ = gl::storageBlockElements(sizeof(gpu::GpuLight));  // chunks of S0 start aligned
@@ -180,9 +185,7 @@ void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHi
     u.bruteForce = options.pass.bruteForce ? 1u : 0u;
     u.cullingDepthScale = options.sceneSize;
     u.shadowSamples = unsigned(options.shadows.samples);
-    u.selectFlags = (options.shadows.skipFinest ? gpu::kSelectSkipFinest : 0u) |
-                    (options.shadows.uniformSelection ? gpu::kSelectUniform : 0u) |
-                    (options.shadows.blendTargets ? gpu::kSelectBlendTargets : 0u);
+    u.selectFlags = selectionFlags(options.shadows);
     u.drawnTargets = drawnTargets;
     u.frameSeed = options.frameSeed;
     u.tileRotation = options.tileRotation % unsigned(n * n);

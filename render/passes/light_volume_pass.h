@@ -45,6 +45,9 @@ struct LightPassOptions {
   unsigned tileRotation = 0;  // n x n interleaving: lights are dealt to tile (index + rotation) mod n^2
 };
 
+// gpu::kSelect* of a resolved estimator: the selection the light pass makes, which the shadow rays recompute.
+unsigned selectionFlags(const ShadowEstimator& shadows);
+
 // Per pixel of the light pass's target: the running importance total, k selected lights, and what the
 // grid lights that cannot be selected there add.
 struct ShadowSlots {
