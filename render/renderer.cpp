@@ -241,8 +241,8 @@ FrameStats Renderer::render(const CameraView& view) {
     // the last frame; the accumulated estimates replace them for the filter and the composite.
     if (accumulating())
       timed(passes::kAccumulation, [&] {
-        accumulationPass_.execute(gbuffer_, view, target.irradiance, target.layout, shadowed(), settings_.accumulation,
-                                  irradiance_, rawRatio_);
+        accumulationPass_.execute({gbuffer_, view, target.irradiance, target.layout, shadowed()},
+                                  settings_.accumulation, {irradiance_, rawRatio_});
       });
     // A-trous filter over the ratio, as a ratio estimator with the unshadowed irradiance (less of it
     // where the ratio holds more frames).
