@@ -213,22 +213,23 @@ FrameStats Renderer::render(const CameraView& view) {
     shadowTargets_.races = 0;
     if (drawsShadowTargets())
       timed(passes::kShadowTargets, [&] {
-        shadowTargetsPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, shadowEstimator_.drawnTargets,
+        shadowTargetsPass_.execute({inputLights_.lights, inputLights_.count, hierarchy_}, shadowEstimator_.drawnTargets,
                                    options.frameSeed, shadowTargets_);
       });
-    LightPassTarget target = lightPassTarget();
+    const LightPassTarget target = lightPassTarget();
     LightPassDraws draws;
     // n x n interleaving: the surfaces as n^2 tiles, each shaded by 1/n^2 of the lights.
     if (interleaved()) timed(passes::kInterleaveSplit, [&] { interleavePass_.split(gbuffer_, tiles_); });
     // Light volumes: irradiance through the LGH, and k lights per pixel picked for shadow rays.
     timed(passes::kLightPass, [&] {
-      draws = lightPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, options, target, &shadowTargets_);
+      draws =
+          lightPass_.execute({inputLights_.lights, inputLights_.count, hierarchy_, &shadowTargets_}, options, target);
     });
     // The tiles' irradiance back at full resolution, edge-aware.
     if (interleaved())
       timed(passes::kInterleaveResolve, [&] {
-        interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, options.pass.overdraw, irradiance_,
-                                fragmentCounts_);
+        interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{},
+                                {irradiance_, options.pass.overdraw ? &fragmentCounts_ : nullptr});
       });
     // Shadow rays to the picked lights: the raw visibility ratio.
     if (shadowed())
@@ -254,9 +255,9 @@ FrameStats Renderer::render(const CameraView& view) {
   }
   // Emission + direct + albedo / pi x irradiance x visibility; non-finite pixels written black, counted.
   timed(passes::kComposite, [&] {
-    stats.nonFinitePixels =
-        compositePass_.execute(gbuffer_, direct_, settings_.indirect ? &irradiance_ : nullptr,
-                               settings_.indirect && shadowed() ? &visibility_ : nullptr, indirect_, final_);
+    const CompositeInputs in{gbuffer_, direct_, settings_.indirect ? &irradiance_ : nullptr,
+                             settings_.indirect && shadowed() ? &visibility_ : nullptr};
+    stats.nonFinitePixels = compositePass_.execute(in, {indirect_, final_});
   });
   stats.passes = profiler_.collect();
   if (settings_.indirect && settings_.lightPass.overdraw) measureOverdraw(stats.lights);

@@ -105,19 +105,19 @@ unsigned LightVolumePass::unselectableTargets(const LightPassOptions& options, s
   return counts ? drawnTargets->races : 0u;
 }
 
-LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
-                                        const LightPassOptions& options, LightPassTarget& target,
-                                        const ShadowTargets* drawnTargets) {
+LightPassDraws LightVolumePass::execute(const LightPassInputs& in, const LightPassOptions& options,
+                                        const LightPassTarget& target) {
+  const GpuHierarchy& hierarchy = in.hierarchy;
   // Brute force draws no grid level; an unbuilt hierarchy has none either.
   const int L = options.pass.bruteForce || hierarchy.levels.empty() ? 0 : hierarchy.grid.levels;
   checkTarget(options, target, L);
   LightPassDraws counts;
-  const std::vector<Draw> draws = drawList(lights, lightCount, hierarchy, options, L, counts);
-  const unsigned m = unselectableTargets(options, lightCount, L, drawnTargets);
+  const std::vector<Draw> draws = drawList(in.lights, in.lightCount, hierarchy, options, L, counts);
+  const unsigned m = unselectableTargets(options, in.lightCount, L, in.drawnTargets);
   uploadUniforms(draws, hierarchy, options, target.layout, L, m);
   bindTargets(options, target);
   if (options.pass.volumeCulling) prepareCulling(draws, hierarchy, options, target, L);
-  bindInputs(options, target, lights, m > 0 ? drawnTargets : nullptr);
+  bindInputs(options, target, in.lights, m > 0 ? in.drawnTargets : nullptr);
   issueDraws(draws, options, m > 0);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl::checkErrors("light pass");
@@ -197,7 +197,7 @@ void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHi
 
 // Clears and binds what the fragments write (irradiance, fragment counts, shadow slots) and read (the
 // surfaces); with volume culling the framebuffer also holds the culling depth and slices.
-void LightVolumePass::bindTargets(const LightPassOptions& options, LightPassTarget& target) {
+void LightVolumePass::bindTargets(const LightPassOptions& options, const LightPassTarget& target) {
   const glm::ivec2 size = target.layout.targetSize();
   // Made per frame (the targets may change) and kept until the next: deleting a bound framebuffer unbinds it.
   framebuffer_ =
@@ -226,8 +226,8 @@ void LightVolumePass::prepareCulling(const std::vector<Draw>& draws, const GpuHi
 
 // What the light volumes read and write besides the framebuffer; after the culling preparation, which
 // uses image units, textures and storage bindings of its own.
-void LightVolumePass::bindInputs(const LightPassOptions& options, LightPassTarget& target, const gl::Buffer& lights,
-                                 const ShadowTargets* drawnTargets) {
+void LightVolumePass::bindInputs(const LightPassOptions& options, const LightPassTarget& target,
+                                 const gl::Buffer& lights, const ShadowTargets* drawnTargets) {
   if (options.pass.overdraw) target.fragmentCounts->bindImage(LGH_IMAGE_FRAGMENT_COUNTS, GL_READ_WRITE);
   if (options.shadows.samples > 0) {
     target.shadowSlots->totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
