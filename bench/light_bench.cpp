@@ -181,7 +181,7 @@ std::vector<InterleaveRow> measureInterleaving(RenderBench& bench, const RenderF
       if (options.exactError) {
         BruteForcePass bruteForce;
         gl::Texture2D out(settings.image.width, settings.image.height, GL_RGBA32F);
-        bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
+        bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count},
                            renderer.clampDistance(), out);
         exact = fromGLRows(settings.image.width, settings.image.height, out.readRGBA());
       }

@@ -278,7 +278,7 @@ std::vector<Measurement> SweepRunner::Baselines::measure() {
 void SweepRunner::Baselines::warmUp() {
   const gl::Buffer one = gl::Buffer::fromVector(uniformSubset(lights_, 1, 1));
   rasterizedBruteForce(one, 1);
-  runner_.bruteForce_.execute(renderer_.gbuffer(), one, 1, clamp_, target_, &gpu_);
+  runner_.bruteForce_.execute({renderer_.gbuffer(), one, 1, &gpu_}, clamp_, target_);
 }
 
 // The light pass in brute-force mode (every light full-screen) over `lights`, into target_.
@@ -289,7 +289,7 @@ void SweepRunner::Baselines::rasterizedBruteForce(const gl::Buffer& lights, size
   const int w = base_.image.width, h = base_.image.height;
   LightPassTarget t{
       renderer_.gbuffer().position, renderer_.gbuffer().normal, TileLayout::of(1, w, h), target_, nullptr, nullptr};
-  runner_.lightPass_.execute(lights, count, renderer_.hierarchy(), o, t);
+  runner_.lightPass_.execute({lights, count, renderer_.hierarchy()}, o, t);
 }
 
 // Uniform subsampling: M of the N lights, a new random subset each repeat; unshadowed through the light
@@ -305,7 +305,7 @@ Measurement SweepRunner::Baselines::uniform(size_t m, bool shadowed) {
     u.othersCpu = std::max(u.othersCpu, runner_.sampler_.sample([&] {
       ms = timedMs([&] {
         if (shadowed)
-          runner_.bruteForce_.execute(renderer_.gbuffer(), buffer, u.subsetLights, clamp_, target_, &gpu_);
+          runner_.bruteForce_.execute({renderer_.gbuffer(), buffer, u.subsetLights, &gpu_}, clamp_, target_);
         else
           rasterizedBruteForce(buffer, u.subsetLights);
       });

@@ -28,6 +28,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
+#include "shared/accumulation_types.h"
 
 layout(binding = LGH_TEXTURE_ACCUM_RAW_IRRADIANCE) uniform sampler2D rawIrradiance;  // tiled layout when n > 1
 layout(binding = LGH_TEXTURE_ACCUM_IRRADIANCE_SUM) uniform sampler2D historyIrradiance;
@@ -41,27 +42,16 @@ layout(rgba32f, binding = LGH_IMAGE_ACCUM_RATIO_SUM) uniform writeonly image2D r
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_POSITION) uniform writeonly image2D positionOut;
 layout(rgba16f, binding = LGH_IMAGE_ACCUM_NORMAL) uniform writeonly image2D normalOut;
 
-uniform int stage;                    // 0: sums and outputs; 1: resolve of incomplete interleaved sums
-uniform float normalPower;            // stage 1: neighbour weight max(0, n.n')^normalPower
-uniform float planeSigma;             // stage 1: tangent-plane distance in pixel footprints at weight e^-1/2
-uniform int hasHistory;               // 0: restart (every pixel's history is empty)
-uniform int shadowed;                 // the ratio image holds this frame's raw ratio
-uniform mat4 previousViewProjection;  // camera-relative: clip = M (p - previousCameraPosition)
-uniform vec3 previousCameraPosition;
-uniform uint tilesPerAxis;  // n
-uniform uvec2 tileSize;
-uniform float maxFrames;        // history length cap
-uniform float planeTolerance;   // tangent-plane distance, in pixel footprints, still the same surface
-uniform float normalTolerance;  // smallest n . n' still the same surface
+layout(std140, binding = LGH_UBO_PASS) uniform Accumulation { AccumulationUniforms accum; };
 
 ivec2 tiledCoord(ivec2 pixel) {
   uvec2 p = uvec2(pixel);
-  return ivec2((p % tilesPerAxis) * tileSize + p / tilesPerAxis);
+  return ivec2((p % accum.tilesPerAxis) * uvec2(accum.tileWidth, accum.tileHeight) + p / accum.tilesPerAxis);
 }
 
 // The history pixel holding this surface, or (-1, -1) when the previous frame did not see it.
 ivec2 historyPixel(Surface s, ivec2 size) {
-  vec4 clip = previousViewProjection * vec4(s.position - previousCameraPosition, 1.0);
+  vec4 clip = accum.previousViewProjection * vec4(s.position - accum.previousCameraPosition, 1.0);
   if (clip.w <= 0.0) return ivec2(-1);
   // Nearest texel: a still camera maps every pixel centre onto itself, so the history is not blurred.
   ivec2 q = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(size)));
@@ -69,8 +59,8 @@ ivec2 historyPixel(Surface s, ivec2 size) {
   vec4 p = texelFetch(previousPosition, q, 0);
   if (p.w == 0.0) return ivec2(-1);
   float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30);
-  if (abs(dot(s.normal, p.xyz - s.position)) > planeTolerance * footprint) return ivec2(-1);  // disoccluded
-  if (dot(s.normal, texelFetch(previousNormal, q, 0).xyz) < normalTolerance) return ivec2(-1);
+  if (abs(dot(s.normal, p.xyz - s.position)) > accum.planeTolerance * footprint) return ivec2(-1);  // disoccluded
+  if (dot(s.normal, texelFetch(previousNormal, q, 0).xyz) < accum.normalTolerance) return ivec2(-1);
   return q;
 }
 
@@ -79,7 +69,7 @@ ivec2 historyPixel(Surface s, ivec2 size) {
 void resolveIncomplete(ivec2 pixel, ivec2 size) {
   Surface s = loadSurface(pixel);
   float frames = texelFetch(historyIrradiance, pixel, 0).a;
-  uint n = tilesPerAxis;
+  uint n = accum.tilesPerAxis;
   if (!s.valid || frames < 1.5 || frames >= float(n * n)) return;
   float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30);
   int half_ = int(n / 2u);
@@ -95,9 +85,10 @@ void resolveIncomplete(ivec2 pixel, ivec2 size) {
       vec4 qPosition = texelFetch(gPosition, q, 0);
       if (qPosition.w == 0.0 || qSum.a == 0.0) continue;
       float window = (even && halfX > 0 && abs(dx) == half_ ? 0.5 : 1.0) * (even && abs(dy) == half_ ? 0.5 : 1.0);
-      float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
+      float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * accum.planeSigma);
       float w =
-          window * pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) * exp(-0.5 * plane * plane);
+          window * pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), accum.normalPower) *
+          exp(-0.5 * plane * plane);
       sum += w * qSum.rgb / qSum.a;
       weightSum += w;
     }
@@ -110,7 +101,7 @@ void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = ivec2(frame.resolution.xy);
   if (any(greaterThanEqual(pixel, size))) return;
-  if (stage == 1) {
+  if (accum.stage == kAccumulateResolveIncomplete) {
     resolveIncomplete(pixel, size);
     return;
   }
@@ -123,7 +114,7 @@ void main() {
     return;
   }
   vec4 irradianceSum = vec4(0.0), ratioSum = vec4(0.0);
-  if (hasHistory != 0) {
+  if (accum.hasHistory != 0u) {
     ivec2 q = historyPixel(s, size);
     if (q.x >= 0) {
       irradianceSum = texelFetch(historyIrradiance, q, 0);
@@ -132,17 +123,17 @@ void main() {
   }
   // At the cap the sums are scaled to maxFrames - 1 frames first: a moving average of the last frames.
   float n = irradianceSum.a;
-  if (n > maxFrames - 1.0) {
-    float keep = (maxFrames - 1.0) / n;
+  if (n > accum.maxFrames - 1.0) {
+    float keep = (accum.maxFrames - 1.0) / n;
     irradianceSum *= keep;
     ratioSum *= keep;
   }
-  vec3 e =
-      tilesPerAxis > 1u ? texelFetch(rawIrradiance, tiledCoord(pixel), 0).rgb : texelFetch(rawIrradiance, pixel, 0).rgb;
+  vec3 e = accum.tilesPerAxis > 1u ? texelFetch(rawIrradiance, tiledCoord(pixel), 0).rgb
+                                   : texelFetch(rawIrradiance, pixel, 0).rgb;
   vec4 rawRatio = imageLoad(ratio, pixel);
   float l = max(luminance(e), 0.0);
-  float r = shadowed != 0 ? rawRatio.r : 1.0, weight = shadowed != 0 ? max(rawRatio.b, 0.0) : l;
-  float variance = shadowed != 0 ? max(rawRatio.g, 0.0) : 0.0;
+  float r = accum.shadowed != 0u ? rawRatio.r : 1.0, weight = accum.shadowed != 0u ? max(rawRatio.b, 0.0) : l;
+  float variance = accum.shadowed != 0u ? max(rawRatio.g, 0.0) : 0.0;
   irradianceSum += vec4(e, 1.0);
   ratioSum += vec4(weight * r, weight, variance, l);
   imageStore(irradianceSumOut, pixel, irradianceSum);
@@ -150,9 +141,9 @@ void main() {
   float frames = irradianceSum.a;
   if (frames < 1.5) return;  // this frame only: its values stay as they are
   // Before n^2 frames the sum lacks some of the lights' tiles: stage 1 resolves it.
-  if (frames >= float(tilesPerAxis * tilesPerAxis))
+  if (frames >= float(accum.tilesPerAxis * accum.tilesPerAxis))
     imageStore(irradiance, pixel, vec4(irradianceSum.rgb / frames, imageLoad(irradiance, pixel).a));
-  if (shadowed != 0) {
+  if (accum.shadowed != 0u) {
     // sum(T) = 0: no frame's samples weighed anything, and each frame's ratio was 1 (shadow_rays.comp).
     float accumulated = ratioSum.g > 0.0 ? ratioSum.r / ratioSum.g : rawRatio.r;
     imageStore(ratio, pixel,

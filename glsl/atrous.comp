@@ -34,28 +34,20 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
+#include "shared/shadow_filter_types.h"
 
 layout(binding = LGH_TEXTURE_FILTER_SIGNAL)
     uniform sampler2D signalIn;  // stage 0: raw ratio (r), var(U D) (g), U D (b), frames (a); 1, 2: (S, U D, U, var)
 layout(binding = LGH_TEXTURE_FILTER_SECOND) uniform sampler2D
     irradiance;  // unshadowed irradiance (stage 0), raw ratio (stages 1, 2)
 layout(rgba32f, binding = LGH_IMAGE_FILTER_OUT) uniform writeonly image2D signalOut;
-uniform int stage;
-uniform int stepSize;
-uniform float normalPower;      // weight max(0, n.n')^normalPower
-uniform float planeSigma;       // tangent-plane distance, in pixel footprints x stepSize, at weight e^-1/2
-uniform float ratioSigma;       // ratio difference at weight e^-1/2 (from the second pass on: the first
-                                // pass sees raw ratios, with k = 1 only 0 or 1, which would stop every tap)
-uniform float sigmaFade;        // ratio sigma x N^-sigmaFade for a ratio accumulated over N frames
-uniform int passes;             // the filter's stage-1 passes (steps 1, 2, ..., 2^(passes - 1))
-uniform int correctIrradiance;  // output the ratio times the filtered mean weight (ShadowSettings)
-uniform float lghError;         // f: the LGH irradiance's expected relative error (the prior spread of D)
+layout(std140, binding = LGH_UBO_PASS) uniform ShadowFilter { ShadowFilterUniforms atrous; };
 
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = ivec2(frame.resolution.xy);
   if (any(greaterThanEqual(pixel, size))) return;
-  if (stage == 0) {
+  if (atrous.stage == kFilterPrepare) {
     vec4 raw = texelFetch(signalIn, pixel, 0);
     float u = max(luminance(texelFetch(irradiance, pixel, 0).rgb), 0.0), weighted = max(raw.b, 0.0);  // U, U D
     imageStore(signalOut, pixel, vec4(weighted * raw.r, weighted, u, max(raw.g, 0.0)));
@@ -63,7 +55,7 @@ void main() {
   }
   vec4 centre = texelFetch(signalIn, pixel, 0);
   vec4 raw = texelFetch(irradiance, pixel, 0);  // the raw ratio: r, var(U D) g, U D b, frames a
-  if (stage == 2) {
+  if (atrous.stage == kFilterFinish) {
     // S <= U D tap by tap (a ratio is at most 1), so S / (U D) stays in [0, 1] however small U D is; only
     // U D = 0 (no light, or every sample weighed 0) has no quotient.
     float ratio = clamp(centre.g > 0.0 ? centre.r / centre.g : raw.r, 0.0, 1.0);
@@ -71,10 +63,11 @@ void main() {
     // The correction trusts the mean weight as far as it is more certain than the LGH's irradiance:
     // f^2 / (f^2 + var D), var D = var(U D) / U^2 (U is exact but for the interleaving's resolve).
     float varianceOfD = centre.b > 0.0 ? centre.a / (centre.b * centre.b) : 0.0;
-    float prior = lghError * lghError;
+    float prior = atrous.lghError * atrous.lghError;
     float trust = prior > 0.0 ? prior / (prior + varianceOfD) : 0.0;
     float correction = 1.0 + trust * (meanWeight - 1.0);
-    imageStore(signalOut, pixel, vec4(correctIrradiance != 0 ? ratio * correction : ratio, ratio, meanWeight, 1.0));
+    float visibility = atrous.correctIrradiance != 0u ? ratio * correction : ratio;
+    imageStore(signalOut, pixel, vec4(visibility, ratio, meanWeight, 1.0));
     return;
   }
   Surface s = loadSurface(pixel);
@@ -83,29 +76,30 @@ void main() {
     return;
   }
   float frames = max(raw.a, 1.0);  // accumulated (1 for a single frame)
-  int kept = passes - int(floor(sigmaFade * log2(frames)));
-  if (stepSize >= (1 << clamp(kept, 0, 30))) {  // one of the widest passes, skipped at N frames
+  int kept = atrous.passes - int(floor(atrous.sigmaFade * log2(frames)));
+  if (atrous.stepSize >= (1 << clamp(kept, 0, 30))) {  // one of the widest passes, skipped at N frames
     imageStore(signalOut, pixel, centre);
     return;
   }
   const float kernel[3] = float[](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
-  float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30) * float(stepSize);
+  float footprint =
+      max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30) * float(atrous.stepSize);
   float centreRatio = centre.g > 0.0 ? centre.r / centre.g : raw.r;
-  float sigma = ratioSigma * pow(frames, -sigmaFade);
+  float sigma = atrous.ratioSigma * pow(frames, -atrous.sigmaFade);
   vec3 sum = vec3(0.0);
   float weightSum = 0.0, varianceSum = 0.0;
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
-      ivec2 q = pixel + ivec2(dx, dy) * stepSize;
+      ivec2 q = pixel + ivec2(dx, dy) * atrous.stepSize;
       if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
       vec4 qPosition = texelFetch(gPosition, q, 0);
       if (qPosition.w == 0.0) continue;
       vec4 v = texelFetch(signalIn, q, 0);
       float qRatio = v.g > 0.0 ? v.r / v.g : centreRatio;  // a tap without a ratio stops nothing
-      float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
-      float dr = stepSize > 1 ? (qRatio - centreRatio) / sigma : 0.0;
+      float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * atrous.planeSigma);
+      float dr = atrous.stepSize > 1 ? (qRatio - centreRatio) / sigma : 0.0;
       float w = kernel[abs(dx)] * kernel[abs(dy)] *
-                pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) *
+                pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), atrous.normalPower) *
                 exp(-0.5 * (plane * plane + dr * dr));
       sum += w * v.rgb;
       varianceSum += w * w * v.a;
@@ -113,6 +107,6 @@ void main() {
     }
   }
   // The centre tap has weight (3/8)^2 > 0, so weightSum > 0.
-  float variance = stepSize == 1 ? varianceSum / (weightSum * weightSum) : centre.a;
+  float variance = atrous.stepSize == 1 ? varianceSum / (weightSum * weightSum) : centre.a;
   imageStore(signalOut, pixel, vec4(sum / weightSum, variance));
 }

@@ -35,6 +35,18 @@ flat in vec2 lightBlend;
 flat in uint lightId;  // kSlotS0 | S0 index, or merged grid-light index
 flat in vec3 lightVariance;
 
+// The light this fragment shades, as lightSelection reads it.
+ShadedLight shadedLight() {
+  ShadedLight l;
+  l.position = lightPosition;
+  l.omniFraction = lightLobe.w;
+  l.intensity = lightIntensity;
+  l.level = 0u;  // not read
+  l.meanNormal = lightLobe.xyz;
+  l.pad = 0.0;
+  return l;
+}
+
 #ifdef LGH_COUNT_UNSELECTABLE
 // This frame's drawn lights of every grid light (ShadowTargets: pass.drawnTargets per grid light) and the
 // input lights they index. (A variant of its own: llvmpipe runs both sides of a branch under a mask, so
@@ -93,18 +105,16 @@ void main() {
   if (blend == 0.0) discard;
 #endif
   vec3 n = texelFetch(surfaceNormal, pixel, 0).xyz;
-  vec3 e =
-      lightContribution(lightPosition, lightIntensity, lightLobe.xyz, lightLobe.w, position.xyz, n, pass.clampDistance);
-  irradiance = vec4(blend * e, 1.0);
+  bool gridLight = (lightId & kSlotS0) == 0u;
+  LightSelection lit = lightSelection(shadedLight(), position.xyz, n, d, blend, gridLight, pass.clampDistance,
+                                      pass.defensive, (pass.selectFlags & kSelectUniform) != 0u);
+  irradiance = vec4(lit.irradiance, 1.0);
 #ifdef LGH_SELECT_SHADOWS
   bool finest = role == kRoleFinest;
   if (!(finest && (pass.selectFlags & kSelectSkipFinest) != 0u)) {
-    bool gridLight = (lightId & kSlotS0) == 0u;
-    float importance = selectionImportance(irradiance.rgb, lightIntensity, blend, d, pass.clampDistance,
-                                           gridLight ? pass.defensive : 0.0);
-    if ((pass.selectFlags & kSelectUniform) != 0u && importance > 0.0) importance = 1.0;
     uint pixelIndex = uint(pixel.y) * (pass.tilesPerAxis * pass.tileWidth) + uint(pixel.x);
-    if (importance > 0.0) selectShadowSample(pixelIndex, lightId, importance, pass.shadowSamples, pass.frameSeed);
+    if (lit.importance > 0.0)
+      selectShadowSample(pixelIndex, lightId, lit.importance, pass.shadowSamples, pass.frameSeed);
 #ifdef LGH_COUNT_UNSELECTABLE
     else
       countUnselectable(pixelIndex, position.xyz, n, d, role, R, blend);

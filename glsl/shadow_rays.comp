@@ -35,6 +35,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/octahedral.h"
 #include "shared/ray_offset.h"
 #include "shared/sampling.glsl"
+#include "shared/shadow_ray_types.h"
 
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight inputLights[]; };
 layout(std430, binding = LGH_BINDING_PASS1) readonly buffer ShadowTotals { float shadowTotals[]; };  // F'
@@ -48,26 +49,14 @@ layout(std430, binding = LGH_BINDING_PASS5) readonly buffer ShadowUnselectable {
 layout(rgba32f,
        binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D ratioOut;  // r: visibility ratio, g: T's variance, b: T
 
-uniform uint samples;       // k
-uniform uint tilesPerAxis;  // the slots are in the light pass's (tiled) layout
-uniform uvec2 tileSize;
-uniform uint races;           // input lights drawn per grid light (ShadowTargets); 0: jittered centres
-uniform int resampleTargets;  // pick among a grid light's drawn lights by their geometric factor here
-uniform int weighTargets;     // weigh each grid light's visibility by its drawn lights' G over its centre's
-uniform int blendTargets;     // blend each drawn light by its own distance (else by its grid light's centre's)
-uniform float spread;         // jitter scale: the jitter's standard deviation is spread x the cluster's
-uniform int uniformSelection;
-uniform int everyLevelSelected;  // 0 when the finest level is skipped: F' / C then compares unlike sums
-uniform float defensive;         // the light pass's defensive share (ShadowSettings::selectionDefensive)
-uniform float sampleSpread;      // the prior spread of one sample's D (ShadowSettings::correctionSampleSpread)
-uniform float clampDistance;
-// The blending parameters of the light pass, to recompute a selected light's importance.
-uniform float alpha;
-uniform float topCellSize;
-uniform uint firstLevel;
-uniform uint levels;
-uniform int bruteForce;
-uniform uint frameSeed;
+layout(std140, binding = LGH_UBO_PASS) uniform ShadowRays { ShadowRayUniforms rays; };
+
+// The light pass's selection (rays.selectFlags, as light_volume.frag read them).
+bool uniformSelection() { return (rays.selectFlags & kSelectUniform) != 0u; }
+// False when the finest level is skipped: F' / C then compares unlike sums.
+bool everyLevelSelected() { return (rays.selectFlags & kSelectSkipFinest) == 0u; }
+// Blend each drawn light by its own distance (else by its grid light's centre's).
+bool blendTargets() { return (rays.selectFlags & kSelectBlendTargets) != 0u; }
 
 // Raised-cosine variate on [-1, 1], pdf (1 + cos(pi s)) / 2, by Newton's method on its CDF
 // (s + 1) / 2 + sin(pi s) / (2 pi); four steps from a good start reach float precision.
@@ -87,8 +76,8 @@ const float kRaisedCosineStd = 0.36151;  // sqrt(1/3 - 2/pi^2)
 // its grid light's luminance share: its geometric factor, blended by its own distance (blendTargets).
 float drawnFactorOf(uint light, vec3 x, vec3 n, uint role, float R) {
   ShadedLight l = decodeInputLight(inputLights[light]);
-  float g = geometricFactor(l, x, n, clampDistance);
-  return blendTargets != 0 && g > 0.0 ? g * blendWeight(role, distance(l.position, x), R) : g;
+  float g = geometricFactor(l, x, n, rays.clampDistance);
+  return blendTargets() && g > 0.0 ? g * blendWeight(role, distance(l.position, x), R) : g;
 }
 
 // The input light a ray towards grid light g aims at. The m drawn lights follow the share of g's
@@ -102,15 +91,15 @@ float drawnFactorOf(uint light, vec3 x, vec3 n, uint role, float R) {
 // factor at x (the mean of the m drawn lights', resampled; the drawn light's own, not resampled; without
 // blendTargets, G_i alone). Unbiased either way.
 uint pickTarget(uint gridLight, uint race, vec3 x, vec3 n, uint role, float R, inout Rng rng, out float drawnFactor) {
-  uint drawn = clusterTargets[gridLight * races + race];
-  if (resampleTargets == 0) {
+  uint drawn = clusterTargets[gridLight * rays.races + race];
+  if (rays.resampleTargets == 0u) {
     drawnFactor = drawn != kNoLight ? drawnFactorOf(drawn, x, n, role, R) : 0.0;
     return drawn;
   }
   float total = 0.0, count = 0.0;
   uint picked = drawn;  // if no drawn light reaches x, fall back to the plain draw
-  for (uint r = 0u; r < races; ++r) {
-    uint candidate = clusterTargets[gridLight * races + r];
+  for (uint r = 0u; r < rays.races; ++r) {
+    uint candidate = clusterTargets[gridLight * rays.races + r];
     if (candidate == kNoLight) continue;
     count += 1.0;
     float g = drawnFactorOf(candidate, x, n, role, R);
@@ -127,53 +116,51 @@ void main() {
   if (any(greaterThanEqual(pixel, ivec2(frame.resolution.xy)))) return;
   Surface s = loadSurface(pixel);
   uvec2 p = uvec2(pixel);
-  uvec2 tiled = (p % tilesPerAxis) * tileSize + p / tilesPerAxis;
-  uint pixelIndex = tiled.y * (tilesPerAxis * tileSize.x) + tiled.x;
+  uvec2 tiled = (p % rays.tilesPerAxis) * uvec2(rays.tileWidth, rays.tileHeight) + p / rays.tilesPerAxis;
+  uint pixelIndex = tiled.y * (rays.tilesPerAxis * rays.tileWidth) + tiled.x;
   float visible = 0.0, weights = 0.0, squares = 0.0, estimate = 0.0, variance = 0.0;
   if (s.valid) {
     vec3 origin = offsetRayOrigin(s.position, s.normal);
-    Rng rng = makeRng(pixelIndex, frameSeed ^ 0x5bd1e995u);
+    Rng rng = makeRng(pixelIndex, rays.frameSeed ^ 0x5bd1e995u);
     // Slot j reads race (first + j) mod m: a grid light picked twice at one pixel gets two independent
     // input lights (while k <= m), and neighbouring pixels mostly read different races.
-    uint firstRace = races > 0u ? pcgHash(pixelIndex ^ frameSeed) % races : 0u;
-    for (uint j = 0u; j < samples; ++j) {
-      uint id = shadowSlots[pixelIndex * samples + j];
+    uint firstRace = rays.races > 0u ? pcgHash(pixelIndex ^ rays.frameSeed) % rays.races : 0u;
+    for (uint j = 0u; j < rays.samples; ++j) {
+      uint id = shadowSlots[pixelIndex * rays.samples + j];
       if (id == kNoLight) continue;
       bool gridLight = (id & kSlotS0) == 0u;
       ShadedLight light = gridLight ? decodeGridLight(gridLights[id]) : decodeInputLight(inputLights[id & ~kSlotS0]);
-      float R = levelRadius(alpha, topCellSize, light.level, levels);
-      uint role = bruteForce != 0 ? kRoleOnly : levelRole(light.level, firstLevel, levels);
+      float R = levelRadius(rays.alpha, rays.topCellSize, light.level, rays.levels);
+      uint role = rays.bruteForce != 0u ? kRoleOnly : levelRole(light.level, rays.firstLevel, rays.levels);
       vec3 target = light.position;
       float drawnFactor = -1.0;  // < 0: no drawn targets (an S0 light, or a jittered centre)
       if (gridLight) {
-        uint targetLight = races > 0u ? pickTarget(id, (firstRace + j) % races, s.position, s.normal, role, R, rng,
-                                                   drawnFactor)
-                                      : kNoLight;
+        uint targetLight = rays.races > 0u ? pickTarget(id, (firstRace + j) % rays.races, s.position, s.normal, role,
+                                                        R, rng, drawnFactor)
+                                           : kNoLight;
         if (targetLight != kNoLight) {
           target = inputLights[targetLight].position;
         } else {
           drawnFactor = -1.0;
           vec3 sigma = sqrt(max(gridLights[id].variance, vec3(0.0)));
           vec3 jitter = vec3(raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)));
-          target = light.position + (spread / kRaisedCosineStd) * sigma * jitter;
+          target = light.position + (rays.spread / kRaisedCosineStd) * sigma * jitter;
         }
       }
       // The light's selection importance c'_l, as the light pass computed it (light_volume.frag).
       float d = distance(light.position, s.position);
       float blend = blendWeight(role, d, R);
-      vec3 e = blend * lightContribution(light.position, light.intensity, light.meanNormal, light.omniFraction,
-                                         s.position, s.normal, clampDistance);
-      float importance = selectionImportance(e, light.intensity, blend, d, clampDistance, gridLight ? defensive : 0.0);
-      if (uniformSelection != 0) importance = importance > 0.0 ? 1.0 : 0.0;
+      LightSelection lit = lightSelection(light, s.position, s.normal, d, blend, gridLight, rays.clampDistance,
+                                          rays.defensive, uniformSelection());
       // What it adds here: the selection drew grid light g in proportion to c'_g, but what g's input
       // lights add is a_g sum_i share_i B_l(|x - p_i|) G_i(x) (blend a_g sum_i share_i G_i(x) without
       // blendTargets), estimated by drawnFactor. Weighing the sample by their quotient makes the weighted
       // mean of the visibilities converge to the exact ratio sum_i a_i G_i V_i / sum_i a_i G_i instead of
       // one weighted by the centres.
-      float added = weighTargets != 0 && drawnFactor >= 0.0
-                        ? (blendTargets != 0 ? 1.0 : blend) * luminance(light.intensity) * drawnFactor
-                        : luminance(e);
-      float weight = importance > 0.0 ? added / importance : 0.0;
+      float added = rays.weighTargets != 0u && drawnFactor >= 0.0
+                        ? (blendTargets() ? 1.0 : blend) * luminance(light.intensity) * drawnFactor
+                        : luminance(lit.irradiance);
+      float weight = lit.importance > 0.0 ? added / lit.importance : 0.0;
       weights += weight;
       squares += weight * weight;
       // The sample adds nothing here (no drawn light reaches x): a ray would decide nothing.
@@ -194,18 +181,18 @@ void main() {
   // mean weight. Uniform selection, the paper's comparison of ratio estimators, keeps D = 1: its estimate
   // of the sum, (number of lights) x mean(w), is too noisy to weigh or correct anything by.
   float lgh = luminance(texelFetch(lightPassIrradiance, ivec2(tiled), 0).rgb);
-  if (uniformSelection != 0) {
+  if (uniformSelection()) {
     estimate = lgh;
-  } else if (s.valid && samples > 0u) {
-    float k = float(samples), meanWeight = weights / k;
-    float scale = everyLevelSelected != 0 ? shadowTotals[pixelIndex] : lgh;  // T = scale x mean(w) (+ unselectable)
+  } else if (s.valid && rays.samples > 0u) {
+    float k = float(rays.samples), meanWeight = weights / k;
+    float scale = everyLevelSelected() ? shadowTotals[pixelIndex] : lgh;  // T = scale x mean(w) (+ unselectable)
     estimate = scale * meanWeight + shadowUnselectable[pixelIndex];
     // T's variance, by which the filter trusts the correction: one sample's variance over k, that
     // variance the k samples' own (unbiased: their squared deviations over k - 1) pooled with a prior
     // worth one sample, (sampleSpread C)^2, so that one sample, or k alike by chance, is not taken for a
     // certain D: ((sampleSpread C)^2 + sum (T_j - T)^2) / k, over k.
     float deviations = scale * scale * max(squares - k * meanWeight * meanWeight, 0.0);  // sum (T_j - T)^2
-    variance = (sampleSpread * sampleSpread * lgh * lgh + deviations) / (k * k);
+    variance = (rays.sampleSpread * rays.sampleSpread * lgh * lgh + deviations) / (k * k);
   }
   imageStore(ratioOut, pixel, vec4(ratio, variance, estimate, 1.0));
 }

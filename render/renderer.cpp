@@ -151,6 +151,26 @@ LightPassOptions Renderer::lightPassOptions() const {
   return o;
 }
 
+ShadowRayOptions Renderer::shadowRayOptions(const LightPassOptions& lightPass) {
+  ShadowRayOptions o;
+  o.shadows = lightPass.shadows;
+  o.alpha = lightPass.pass.alpha;
+  o.startLevel = lightPass.pass.startLevel;
+  o.bruteForce = lightPass.pass.bruteForce;
+  o.clampDistance = lightPass.clampDistance;
+  o.frameSeed = lightPass.frameSeed;
+  return o;
+}
+
+ShadowFilterOptions Renderer::shadowFilterOptions() const {
+  ShadowFilterOptions o;
+  o.filter = settings_.filter;
+  o.correction = {shadowEstimator_.correctIrradiance, shadowEstimator_.correctionError};
+  // Less filtering where the ratio holds more frames.
+  o.sigmaFade = accumulating() ? settings_.accumulation.filterFade : 0.0f;
+  return o;
+}
+
 LightPassTarget Renderer::lightPassTarget() {
   const TileLayout layout =
       interleaved() ? tiles_.layout : TileLayout::of(1, settings_.image.width, settings_.image.height);
@@ -193,50 +213,51 @@ FrameStats Renderer::render(const CameraView& view) {
     shadowTargets_.races = 0;
     if (drawsShadowTargets())
       timed(passes::kShadowTargets, [&] {
-        shadowTargetsPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, shadowEstimator_.drawnTargets,
+        shadowTargetsPass_.execute({inputLights_.lights, inputLights_.count, hierarchy_}, shadowEstimator_.drawnTargets,
                                    options.frameSeed, shadowTargets_);
       });
-    LightPassTarget target = lightPassTarget();
+    const LightPassTarget target = lightPassTarget();
     LightPassDraws draws;
     // n x n interleaving: the surfaces as n^2 tiles, each shaded by 1/n^2 of the lights.
     if (interleaved()) timed(passes::kInterleaveSplit, [&] { interleavePass_.split(gbuffer_, tiles_); });
     // Light volumes: irradiance through the LGH, and k lights per pixel picked for shadow rays.
     timed(passes::kLightPass, [&] {
-      draws = lightPass_.execute(inputLights_.lights, inputLights_.count, hierarchy_, options, target, &shadowTargets_);
+      draws =
+          lightPass_.execute({inputLights_.lights, inputLights_.count, hierarchy_, &shadowTargets_}, options, target);
     });
     // The tiles' irradiance back at full resolution, edge-aware.
     if (interleaved())
       timed(passes::kInterleaveResolve, [&] {
-        interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{}, options.pass.overdraw, irradiance_,
-                                fragmentCounts_);
+        interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{},
+                                {irradiance_, options.pass.overdraw ? &fragmentCounts_ : nullptr});
       });
     // Shadow rays to the picked lights: the raw visibility ratio.
     if (shadowed())
       timed(passes::kShadowRays, [&] {
-        shadowRayPass_.execute(scene_, gbuffer_, shadowSlots_, target.layout, inputLights_.lights, hierarchy_,
-                               shadowTargets_, options, target.irradiance, rawRatio_);
+        shadowRayPass_.execute({scene_, gbuffer_, inputLights_.lights, hierarchy_, shadowTargets_, shadowSlots_,
+                                target.layout, target.irradiance},
+                               shadowRayOptions(options), rawRatio_);
       });
     // Temporal accumulation: this frame's raw irradiance and ratio added to the history reprojected from
     // the last frame; the accumulated estimates replace them for the filter and the composite.
     if (accumulating())
       timed(passes::kAccumulation, [&] {
-        accumulationPass_.execute(gbuffer_, view, target.irradiance, target.layout, shadowed(), settings_.accumulation,
-                                  irradiance_, rawRatio_);
+        accumulationPass_.execute({gbuffer_, view, target.irradiance, target.layout, shadowed()},
+                                  settings_.accumulation, {irradiance_, rawRatio_});
       });
     // A-trous filter over the ratio, as a ratio estimator with the unshadowed irradiance (less of it
     // where the ratio holds more frames).
     if (shadowed())
       timed(passes::kShadowFilter, [&] {
-        shadowFilterPass_.execute(gbuffer_, rawRatio_, irradiance_, settings_.filter, irradianceCorrection(),
-                                  visibility_, accumulating() ? settings_.accumulation.filterFade : 0.0f);
+        shadowFilterPass_.execute({gbuffer_, rawRatio_, irradiance_}, shadowFilterOptions(), visibility_);
       });
     stats.lights = lightStats(draws);
   }
   // Emission + direct + albedo / pi x irradiance x visibility; non-finite pixels written black, counted.
   timed(passes::kComposite, [&] {
-    stats.nonFinitePixels =
-        compositePass_.execute(gbuffer_, direct_, settings_.indirect ? &irradiance_ : nullptr,
-                               settings_.indirect && shadowed() ? &visibility_ : nullptr, indirect_, final_);
+    const CompositeInputs in{gbuffer_, direct_, settings_.indirect ? &irradiance_ : nullptr,
+                             settings_.indirect && shadowed() ? &visibility_ : nullptr};
+    stats.nonFinitePixels = compositePass_.execute(in, {indirect_, final_});
   });
   stats.passes = profiler_.collect();
   if (settings_.indirect && settings_.lightPass.overdraw) measureOverdraw(stats.lights);

@@ -20,7 +20,9 @@
 #include "render/passes/interleave_pass.h"
 #include "render/passes/lgh_build_pass.h"
 #include "render/passes/light_volume_pass.h"
-#include "render/passes/shadow_pass.h"
+#include "render/passes/shadow_filter_pass.h"
+#include "render/passes/shadow_ray_pass.h"
+#include "render/passes/shadow_targets_pass.h"
 #include "render/settings.h"
 
 namespace lgh {
@@ -110,9 +112,6 @@ class Renderer {
   bool shadowed() const { return settings_.shadows.samples > 0; }
   // Shadow rays aim at input lights drawn from the selected grid lights' clusters.
   bool drawsShadowTargets() const { return shadowEstimator_.drawnTargets > 0 && hierarchy_.gridLightCount > 0; }
-  IrradianceCorrection irradianceCorrection() const {
-    return {shadowEstimator_.correctIrradiance, shadowEstimator_.correctionError};
-  }
   // This frame's shadow estimator (the settings resolved against its limits); says once on stderr what a
   // limit switched off.
   void resolveShadows();
@@ -121,7 +120,11 @@ class Renderer {
   // Restarts the history when the lights were rebuilt or the estimate's settings changed, and counts
   // the frames it holds while the camera is still.
   int updateAccumulation(bool lightsRebuilt, const CameraView& view);
+  // Each pass's settings group: the user's settings with what this frame resolves.
   LightPassOptions lightPassOptions() const;
+  // What the shadow rays read of the light pass that filled the slots (`lightPass`), to recompute its selection.
+  static ShadowRayOptions shadowRayOptions(const LightPassOptions& lightPass);
+  ShadowFilterOptions shadowFilterOptions() const;
   LightPassTarget lightPassTarget();
   // The frame's steps that are more than one call: S0 and the hierarchy when they are out of date,
   // then the light pass with its optional interleaving.

@@ -43,13 +43,13 @@ struct HierarchySettings {
 
 // The light pass (LightVolumePass) and its interleaving (InterleavePass).
 struct LightPassSettings {
-  float alpha = 1.0f;       // R_l = alpha h_l
-  int startLevel = 1;       // finest level blended: 1 (S1) or 0 (S0)
-  int interleave = 1;       // n x n interleaved sampling
-  bool overdraw = false;    // count fragments per pixel (AOV "overdraw")
-  bool bruteForce = false;  // every S0 light at every pixel, weight 1 (exact unshadowed)
-  bool volumeCulling =
-      true;  // depth-culled screen octagons of the 2R spheres (icosahedra around the camera); false: cubes
+  float alpha = 1.0f;         // R_l = alpha h_l
+  int startLevel = 1;         // finest level blended: 1 (S1) or 0 (S0)
+  int interleave = 1;         // n x n interleaved sampling
+  bool overdraw = false;      // count fragments per pixel (AOV "overdraw")
+  bool bruteForce = false;    // every S0 light at every pixel, weight 1 (exact unshadowed)
+  bool volumeCulling = true;  // depth-culled screen octagons of the 2R sphere (icosahedra when the sphere
+                              // holds the camera); false: the paper's cubes
 };
 
 // Indirect shadows: the light pass's selection of k lights per pixel and the shadow rays to them. The

@@ -47,20 +47,33 @@ float geometricFactor(ShadedLight light, vec3 x, vec3 n, float clampDistance) {
          a;
 }
 
-// The shadow-sample selection's importance of a light at distance d whose blended contribution at x
-// is `contribution` (docs/design.md §5, "Defensive selection"): its luminance plus `defensive` x what
-// it would add without the cosines at x and at the light. A grid light stands for input lights spread
-// over its cell and beyond; where its centre grazes x or faces away, its own contribution is small or
-// zero while its lights' is not, so a sample weighed by their quotient would be heavy-tailed (or those
-// lights never sampled). The cosine-free term bounds the quotient (defensive importance sampling,
-// Hesterberg 1995).
-float selectionImportance(vec3 contribution, vec3 intensity, float blend, float d, float clampDistance,
-                          float defensive) {
-  float importance = luminance(contribution);
-  if (defensive > 0.0)  // off by default: the light pass's hot loop skips the term
-    importance +=
-        defensive * blend * luminance(intensity) / max(max(d * d, clampDistance * clampDistance), kMinDistanceSq);
-  return importance;
+// What a light adds at the surface (x, n), blended, and the shadow-sample selection's importance c'_l of it
+// there (docs/design.md §5). The light pass draws a pixel's k lights in proportion to c'_l
+// (light_volume.frag) and the shadow rays weigh each sample by what its light adds over c'_l
+// (shadow_rays.comp): the weights are right only if both compute it alike, so both call lightSelection.
+struct LightSelection {
+  vec3 irradiance;   // B_l(d) x the light's contribution at x (W/m^2)
+  float importance;  // c'_l
+};
+
+// d = |p_l - x|, blend = B_l(d). c'_l is the blended contribution's luminance plus, for a grid light,
+// `defensive` x what it would add without the cosines at x and at the light ("Defensive selection"): a
+// grid light stands for input lights spread over its cell and beyond; where its centre grazes x or faces
+// away, its own contribution is small or zero while its lights' is not, so a sample weighed by their
+// quotient would be heavy-tailed (or those lights never sampled). The cosine-free term bounds the
+// quotient (defensive importance sampling, Hesterberg 1995). uniformSelection: every light that
+// contributes has importance 1 (the paper's comparison).
+LightSelection lightSelection(ShadedLight light, vec3 x, vec3 n, float d, float blend, bool gridLight,
+                              float clampDistance, float defensive, bool uniformSelection) {
+  LightSelection s;
+  s.irradiance = blend * lightContribution(light.position, light.intensity, light.meanNormal, light.omniFraction, x,
+                                           n, clampDistance);
+  s.importance = luminance(s.irradiance);
+  if (gridLight && defensive > 0.0)  // off by default: the light pass's hot loop skips the term
+    s.importance +=
+        defensive * blend * luminance(light.intensity) / max(max(d * d, clampDistance * clampDistance), kMinDistanceSq);
+  if (uniformSelection && s.importance > 0.0) s.importance = 1.0;
+  return s;
 }
 
 #endif

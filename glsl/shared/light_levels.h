@@ -1,7 +1,7 @@
 // What the light pass and the shadow rays both need to know about a light of some level, written once
 // for C++ and GLSL (see gpu_prelude.h): the level's blending radius R_l, its blending role, a light
 // decoded from its storage form (S0 or grid light), and the screen-space bound of its light volume.
-// lgh/blending.h and lgh/grid.h are the double-precision references; tests/render/light_levels_test.cpp
+// lgh/blending.h and lgh/grid.h are the double-precision references; tests/engine/light_levels_test.cpp
 // holds these to them and to brute-force projections.
 #ifndef LGH_LIGHT_LEVELS_H
 #define LGH_LIGHT_LEVELS_H

@@ -3,20 +3,23 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "render/gl/debug.h"
+#include "shared/accumulation_types.h"
 #include "shared/bindings.h"
 
 namespace lgh {
 
-AccumulationPass::AccumulationPass() : program_(gl::Program::compute("accumulate.comp")) {}
+AccumulationPass::AccumulationPass()
+    : program_(gl::Program::compute("accumulate.comp")), uniforms_(sizeof(gpu::AccumulationUniforms)) {}
 
-void AccumulationPass::execute(const GBuffer& gbuffer, const CameraView& view, const gl::Texture2D& rawIrradiance,
-                               const TileLayout& layout, bool shadowed, const AccumulationSettings& settings,
-                               gl::Texture2D& irradiance, gl::Texture2D& ratio) {
+void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationSettings& settings,
+                               const AccumulationTargets& io) {
   if (settings.maxFrames < 1)
     throw std::invalid_argument("accumulation: at most " + std::to_string(settings.maxFrames) +
                                 " frames (use 1 or more)");
+  const GBuffer& gbuffer = in.gbuffer;
   History& previous = history_[current_];
   History& next = history_[1 - current_];
   for (History* h : {&previous, &next}) {
@@ -27,44 +30,52 @@ void AccumulationPass::execute(const GBuffer& gbuffer, const CameraView& view, c
     h->normal = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA16F);
     hasHistory_ = false;
   }
+  // Stage 0 (sums and outputs), and with interleaving stage 1 (pixels whose sums lack some tiles: resolved
+  // from the new sums, over a window that shrinks with N).
+  gpu::AccumulationUniforms sums{};
+  sums.previousViewProjection = previousView_.cameraRelativeViewProjection;
+  sums.previousCameraPosition = previousView_.position;
+  sums.maxFrames = float(settings.maxFrames);
+  sums.stage = gpu::kAccumulateSums;
+  sums.hasHistory = hasHistory_ ? 1u : 0u;
+  sums.shadowed = in.shadowed ? 1u : 0u;
+  sums.tilesPerAxis = unsigned(in.layout.tilesPerAxis);
+  sums.tileWidth = unsigned(in.layout.tileSize.x);
+  sums.tileHeight = unsigned(in.layout.tileSize.y);
+  sums.planeTolerance = kHistoryPlaneTolerance;
+  sums.normalTolerance = kHistoryNormalTolerance;
+  gpu::AccumulationUniforms resolve = sums;
+  const InterleaveFilter filter;
+  resolve.stage = gpu::kAccumulateResolveIncomplete;
+  resolve.normalPower = filter.normalPower;
+  resolve.planeSigma = std::max(filter.planeSigma, 1e-6f);
+  uniforms_.upload(std::vector<gpu::AccumulationUniforms>{sums, resolve});
+
   gbuffer.bindForReading();
-  rawIrradiance.bindTexture(LGH_TEXTURE_ACCUM_RAW_IRRADIANCE);
+  in.rawIrradiance.bindTexture(LGH_TEXTURE_ACCUM_RAW_IRRADIANCE);
   previous.irradianceSum.bindTexture(LGH_TEXTURE_ACCUM_IRRADIANCE_SUM);
   previous.ratioSum.bindTexture(LGH_TEXTURE_ACCUM_RATIO_SUM);
   previous.position.bindTexture(LGH_TEXTURE_ACCUM_PREVIOUS_POSITION);
   previous.normal.bindTexture(LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL);
-  irradiance.bindImage(LGH_IMAGE_ACCUM_IRRADIANCE, GL_READ_WRITE);
-  ratio.bindImage(LGH_IMAGE_ACCUM_RATIO, GL_READ_WRITE);
+  io.irradiance.bindImage(LGH_IMAGE_ACCUM_IRRADIANCE, GL_READ_WRITE);
+  io.ratio.bindImage(LGH_IMAGE_ACCUM_RATIO, GL_READ_WRITE);
   next.irradianceSum.bindImage(LGH_IMAGE_ACCUM_IRRADIANCE_SUM, GL_WRITE_ONLY);
   next.ratioSum.bindImage(LGH_IMAGE_ACCUM_RATIO_SUM, GL_WRITE_ONLY);
   next.position.bindImage(LGH_IMAGE_ACCUM_POSITION, GL_WRITE_ONLY);
   next.normal.bindImage(LGH_IMAGE_ACCUM_NORMAL, GL_WRITE_ONLY);
-  program_.set("hasHistory", int(hasHistory_));
-  program_.set("shadowed", int(shadowed));
-  program_.set("previousViewProjection", previousView_.cameraRelativeViewProjection);
-  program_.set("previousCameraPosition", previousView_.position);
-  program_.set("tilesPerAxis", unsigned(layout.tilesPerAxis));
-  program_.set("tileSize", glm::uvec2(layout.tileSize));
-  program_.set("maxFrames", float(settings.maxFrames));
-  program_.set("planeTolerance", kHistoryPlaneTolerance);
-  program_.set("normalTolerance", kHistoryNormalTolerance);
-  program_.set("stage", 0);
+  uniforms_.bind(0, LGH_UBO_PASS);
   program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-  if (layout.tilesPerAxis > 1) {
-    // Pixels whose sums lack some tiles: resolved from the new sums, over a window that shrinks with N.
-    const InterleaveFilter filter;
+  if (in.layout.tilesPerAxis > 1) {
     next.irradianceSum.bindTexture(LGH_TEXTURE_ACCUM_IRRADIANCE_SUM);
-    program_.set("stage", 1);
-    program_.set("normalPower", filter.normalPower);
-    program_.set("planeSigma", std::max(filter.planeSigma, 1e-6f));
+    uniforms_.bind(1, LGH_UBO_PASS);
     program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   }
   gl::checkErrors("accumulation");
   current_ = 1 - current_;
   hasHistory_ = true;
-  previousView_ = view;
+  previousView_ = in.view;
 }
 
 }  // namespace lgh

@@ -1,10 +1,10 @@
 #pragma once
 // Temporal accumulation of the indirect light (glsl/accumulate.comp), between the shadow rays and
 // the shadow filter:
-//   in:  GBuffer (this frame's surfaces), this frame's raw irradiance (the light pass's target:
-//        full resolution, or the n x n tiles' n^2-scaled values), the camera of the previous frame
-//   in/out: irradiance (resolved in, accumulated out), ratio (raw in, accumulated out, alpha: the
-//        pixel's history length N, which the shadow filter reads)
+//   in:  AccumulationInputs: GBuffer (this frame's surfaces), this frame's camera, this frame's raw
+//        irradiance (the light pass's target: full resolution, or the n x n tiles' n^2-scaled values)
+//   in/out: AccumulationTargets: irradiance (resolved in, accumulated out), ratio (raw in, accumulated
+//        out, alpha: the pixel's history length N, which the shadow filter reads)
 //   history (kept here, ping-pong): sums of the raw irradiance and of the (shadowed, unshadowed)
 //        luminance, and the surfaces they belong to
 // The history is reprojected through the G-buffer each frame and dropped where the surface differs;
@@ -13,6 +13,7 @@
 #include "render/camera_view.h"
 #include "render/gl/program.h"
 #include "render/gl/texture.h"
+#include "render/gl/uniform_blocks.h"
 #include "render/passes/gbuffer_pass.h"
 #include "render/passes/interleave_pass.h"
 #include "render/settings.h"
@@ -24,22 +25,33 @@ namespace lgh {
 inline constexpr float kHistoryPlaneTolerance = 2.0f;
 inline constexpr float kHistoryNormalTolerance = 0.9f;
 
+struct AccumulationInputs {
+  const GBuffer& gbuffer;
+  const CameraView& view;              // this frame's camera (the next frame reprojects through it)
+  const gl::Texture2D& rawIrradiance;  // in `layout`
+  TileLayout layout;                   // tiled when layout.tilesPerAxis > 1
+  bool shadowed = false;               // the ratio target holds this frame's raw ratio (else it is not read)
+};
+
+// Read and written in place.
+struct AccumulationTargets {
+  gl::Texture2D& irradiance;
+  gl::Texture2D& ratio;
+};
+
 class AccumulationPass {
  public:
   AccumulationPass();
   // The next execute() starts every pixel's history anew.
   void restart() { hasHistory_ = false; }
-  // `rawIrradiance` is in `layout` (tiled when layout.tilesPerAxis > 1); `ratio` is read only when
-  // `shadowed`.
-  void execute(const GBuffer& gbuffer, const CameraView& view, const gl::Texture2D& rawIrradiance,
-               const TileLayout& layout, bool shadowed, const AccumulationSettings& settings, gl::Texture2D& irradiance,
-               gl::Texture2D& ratio);
+  void execute(const AccumulationInputs& in, const AccumulationSettings& settings, const AccumulationTargets& io);
 
  private:
   struct History {
     gl::Texture2D irradianceSum, ratioSum, position, normal;
   };
   gl::Program program_;
+  gl::UniformBlocks uniforms_;  // one gpu::AccumulationUniforms per dispatch
   History history_[2];
   int current_ = 0;  // history_[current_] holds the last frame's history
   bool hasHistory_ = false;

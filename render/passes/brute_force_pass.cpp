@@ -17,23 +17,22 @@ BruteForcePass::BruteForcePass()
   maxBlockLights_ = std::min(gl::storageBlockElements(sizeof(gpu::GpuLight)), kMaxLightsPerDispatch);
 }
 
-void BruteForcePass::execute(const GBuffer& gbuffer, const gl::Buffer& lights, size_t lightCount, float clampDistance,
-                             gl::Texture2D& irradiance, const SceneGpu* shadowedIn) const {
-  const gl::Program& program = shadowedIn ? shadowed_ : program_;
-  if (shadowedIn) shadowedIn->bindForCompute();
+void BruteForcePass::execute(const BruteForceInputs& in, float clampDistance, gl::Texture2D& irradiance) const {
+  const gl::Program& program = in.shadowedIn ? shadowed_ : program_;
+  if (in.shadowedIn) in.shadowedIn->bindForCompute();
   irradiance.clear(glm::vec4(0.0f));
-  gbuffer.bindForReading();
+  in.gbuffer.bindForReading();
   irradiance.bindImage(LGH_IMAGE_BRUTE_FORCE_IRRADIANCE, GL_READ_WRITE);
   program.set("clampDistance", clampDistance);
   // One storage block at a time; the shader adds each chunk's sum into the image.
   // Shadowed, every light's BVH traversal counts against the limit too (up to ~1,000 iterations).
-  const size_t perDispatch = shadowedIn ? kMaxShadowedLightsPerDispatch : maxBlockLights_;
-  for (size_t first = 0; first < lightCount; first += perDispatch) {
-    const size_t n = std::min(perDispatch, lightCount - first);
-    lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight),
-                     n * sizeof(gpu::GpuLight));
+  const size_t perDispatch = in.shadowedIn ? kMaxShadowedLightsPerDispatch : maxBlockLights_;
+  for (size_t first = 0; first < in.lightCount; first += perDispatch) {
+    const size_t n = std::min(perDispatch, in.lightCount - first);
+    in.lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight),
+                        n * sizeof(gpu::GpuLight));
     program.set("lightCount", unsigned(n));
-    program.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
+    program.dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   }
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);

@@ -1,7 +1,8 @@
 #pragma once
 // The exact unshadowed sum over every input light at every pixel, in a compute shader: the reference
 // the light pass is measured against (same G-buffer, same shading and clamp, no rasterization).
-//   in:  GBuffer (position, normal), S0 lights, frame uniforms (and the scene's BVH when shadowed)
+//   in:  BruteForceInputs: GBuffer (position, normal), S0 lights (and the scene's BVH when shadowed);
+//        frame uniforms
 //   out: irradiance (RGBA32F, rgb; a = 0)
 
 #include "render/gl/buffer.h"
@@ -11,12 +12,18 @@
 
 namespace lgh {
 
+struct BruteForceInputs {
+  const GBuffer& gbuffer;
+  const gl::Buffer& lights;  // gpu::GpuLight, `lightCount` valid
+  size_t lightCount = 0;
+  // Shadowed: one shadow ray per light per pixel through this scene's BVH (exact shadowed reference).
+  const SceneGpu* shadowedIn = nullptr;
+};
+
 class BruteForcePass {
  public:
   BruteForcePass();
-  // shadowed: one shadow ray per light per pixel through the scene's BVH (exact shadowed reference).
-  void execute(const GBuffer& gbuffer, const gl::Buffer& lights, size_t lightCount, float clampDistance,
-               gl::Texture2D& irradiance, const SceneGpu* shadowedIn = nullptr) const;
+  void execute(const BruteForceInputs& in, float clampDistance, gl::Texture2D& irradiance) const;
 
  private:
   static constexpr size_t kMaxLightsPerDispatch = 32768;  // see the constructor: llvmpipe's loop limit

@@ -14,18 +14,16 @@ CompositePass::CompositePass()
   white_.clear(glm::vec4(1.0f));
 }
 
-unsigned CompositePass::execute(const GBuffer& gbuffer, const gl::Texture2D& direct,
-                                const gl::Texture2D* indirectIrradiance, const gl::Texture2D* visibility,
-                                gl::Texture2D& indirectOut, gl::Texture2D& out) {
-  gbuffer.bindForReading();
-  direct.bindTexture(LGH_TEXTURE_COMPOSITE_DIRECT);
-  (indirectIrradiance ? *indirectIrradiance : black_).bindTexture(LGH_TEXTURE_COMPOSITE_INDIRECT);
-  (visibility ? *visibility : white_).bindTexture(LGH_TEXTURE_COMPOSITE_VISIBILITY);
-  out.bindImage(LGH_IMAGE_COMPOSITE_FINAL, GL_WRITE_ONLY);
-  indirectOut.bindImage(LGH_IMAGE_COMPOSITE_INDIRECT, GL_WRITE_ONLY);
+unsigned CompositePass::execute(const CompositeInputs& in, const CompositeTargets& out) {
+  in.gbuffer.bindForReading();
+  in.direct.bindTexture(LGH_TEXTURE_COMPOSITE_DIRECT);
+  (in.indirectIrradiance ? *in.indirectIrradiance : black_).bindTexture(LGH_TEXTURE_COMPOSITE_INDIRECT);
+  (in.visibility ? *in.visibility : white_).bindTexture(LGH_TEXTURE_COMPOSITE_VISIBILITY);
+  out.final.bindImage(LGH_IMAGE_COMPOSITE_FINAL, GL_WRITE_ONLY);
+  out.indirect.bindImage(LGH_IMAGE_COMPOSITE_INDIRECT, GL_WRITE_ONLY);
   counter_.clear();
   counter_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
-  program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
+  program_.dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
   gl::checkErrors("composite pass");
   return counter_.download<GLuint>(1)[0];

@@ -15,16 +15,16 @@ GridPointsPass::GridPointsPass() : program_(gl::Program::graphics("grid_points.v
   emptyVertexArray_ = gl::VertexArrayHandle(vao);
 }
 
-size_t GridPointsPass::execute(const GpuHierarchy& hierarchy, int level, const CameraView& view,
-                               const gl::Texture2D& position, float pointSize, DisplayImage& out) {
+size_t GridPointsPass::execute(const GridPointsInputs& in, int level, float pointSize, DisplayImage& out) {
+  const GpuHierarchy& hierarchy = in.hierarchy;
   if (level < 1 || level > hierarchy.grid.levels || size_t(level) >= hierarchy.levels.size()) return 0;
   const LghLevelRange& range = hierarchy.levels[size_t(level)];
   if (range.count == 0) return 0;
   gl::DebugGroup group("grid points");
   hierarchy.gridLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
-  position.bindTexture(LGH_TEXTURE_SURFACE_POSITION);
-  program_.set("viewProjection", view.viewProjection());
-  program_.set("cameraPosition", view.position);
+  in.position.bindTexture(LGH_TEXTURE_SURFACE_POSITION);
+  program_.set("viewProjection", in.view.viewProjection());
+  program_.set("cameraPosition", in.view.position);
   program_.set("firstLight", unsigned(range.offset));
   program_.set("pointSize", std::max(pointSize, 1.0f));
   out.framebuffer.bind();

@@ -2,7 +2,8 @@
 // Shows where the hierarchy put its lights: the grid lights of one level drawn as round points at
 // their illumination centres over a displayed frame, faint where the visible surface hides them
 // (compared with the G-buffer's position at the point's pixel).
-//   in:  GpuHierarchy (grid lights and the level table), G-buffer position, the frame's camera
+//   in:  GridPointsInputs: GpuHierarchy (grid lights and the level table), G-buffer position, the
+//        frame's camera; the level and the points' size
 //   out: points blended into a DisplayImage
 
 #include "render/camera_view.h"
@@ -12,13 +13,22 @@
 
 namespace lgh {
 
+struct GridPointsInputs {
+  const GpuHierarchy& hierarchy;
+  const CameraView& view;         // the frame's camera
+  const gl::Texture2D& position;  // the frame's G-buffer position, the size of `out`
+};
+
 class GridPointsPass {
  public:
   GridPointsPass();
   // level in 1..hierarchy.grid.levels (other levels draw nothing). Returns the number of points drawn.
-  // `position` is the G-buffer position of the frame, the size of `out`.
+  size_t execute(const GridPointsInputs& in, int level, float pointSize, DisplayImage& out);
+  // The former signature, for render/app/viewer_app.cpp's call until it moves to the one above; then removed.
   size_t execute(const GpuHierarchy& hierarchy, int level, const CameraView& view, const gl::Texture2D& position,
-                 float pointSize, DisplayImage& out);
+                 float pointSize, DisplayImage& out) {
+    return execute(GridPointsInputs{hierarchy, view, position}, level, pointSize, out);
+  }
 
  private:
   gl::Program program_;

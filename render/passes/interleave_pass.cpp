@@ -43,16 +43,16 @@ void InterleavePass::split(const GBuffer& gbuffer, Tiles& tiles) const {
 }
 
 void InterleavePass::resolve(const GBuffer& gbuffer, const Tiles& tiles, const InterleaveFilter& filter,
-                             bool countFragments, gl::Texture2D& irradiance, gl::Texture2D& fragmentCounts) const {
+                             const InterleaveResolveTargets& out) const {
   const TileLayout& l = tiles.layout;
   gbuffer.bindForReading();
   tiles.irradiance.bindTexture(LGH_TEXTURE_TILED_IRRADIANCE);
   tiles.fragmentCounts.bindTexture(LGH_TEXTURE_TILED_FRAGMENT_COUNTS);
-  irradiance.bindImage(LGH_IMAGE_RESOLVED_IRRADIANCE, GL_WRITE_ONLY);
-  fragmentCounts.bindImage(LGH_IMAGE_RESOLVED_FRAGMENT_COUNTS, GL_WRITE_ONLY);
+  out.irradiance.bindImage(LGH_IMAGE_RESOLVED_IRRADIANCE, GL_WRITE_ONLY);
+  if (out.fragmentCounts) out.fragmentCounts->bindImage(LGH_IMAGE_RESOLVED_FRAGMENT_COUNTS, GL_WRITE_ONLY);
   resolve_.set("tilesPerAxis", unsigned(l.tilesPerAxis));
   resolve_.set("tileSize", glm::uvec2(l.tileSize));
-  resolve_.set("countFragments", int(countFragments));
+  resolve_.set("countFragments", int(out.fragmentCounts != nullptr));
   resolve_.set("normalPower", filter.normalPower);
   resolve_.set("planeSigma", std::max(filter.planeSigma, 1e-6f));
   resolve_.dispatch2D(l.imageSize.x, l.imageSize.y, {8, 8});

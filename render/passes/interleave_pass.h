@@ -35,13 +35,18 @@ struct InterleaveFilter {
   float planeSigma = 2.0f;    // distance from the tangent plane, in pixel footprints, at weight e^-1/2
 };
 
+// What resolve writes, at full resolution.
+struct InterleaveResolveTargets {
+  gl::Texture2D& irradiance;
+  gl::Texture2D* fragmentCounts = nullptr;  // not null: the tiles' fragment counts copied here too
+};
+
 class InterleavePass {
  public:
   InterleavePass();
   void split(const GBuffer& gbuffer, Tiles& tiles) const;
-  // countFragments: also copy the tiles' fragment counts into `fragmentCounts` (full resolution).
-  void resolve(const GBuffer& gbuffer, const Tiles& tiles, const InterleaveFilter& filter, bool countFragments,
-               gl::Texture2D& irradiance, gl::Texture2D& fragmentCounts) const;
+  void resolve(const GBuffer& gbuffer, const Tiles& tiles, const InterleaveFilter& filter,
+               const InterleaveResolveTargets& out) const;
 
  private:
   gl::Program split_, resolve_;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -47,10 +46,13 @@ void ShadowSlots::allocate(glm::ivec2 targetSize, int samples) {
   size = targetSize;
 }
 
-LightVolumePass::LightVolumePass(bool floatAtomics) : floatAtomics_(floatAtomics) {
-  GLint alignment = 256;
-  glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &alignment);
-  uniformStride_ = (sizeof(gpu::LightPassUniforms) + size_t(alignment) - 1) / size_t(alignment) * size_t(alignment);
+unsigned selectionFlags(const ShadowEstimator& shadows) {
+  return (shadows.skipFinest ? gpu::kSelectSkipFinest : 0u) | (shadows.uniformSelection ? gpu::kSelectUniform : 0u) |
+         (shadows.blendTargets ? gpu::kSelectBlendTargets : 0u);
+}
+
+LightVolumePass::LightVolumePass(bool floatAtomics)
+    : floatAtomics_(floatAtomics), uniforms_(sizeof(gpu::LightPassUniforms)) {
   maxBlockLights_ = gl::storageBlockElements(sizeof(gpu::GpuLight));  // chunks of S0 start aligned
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
@@ -103,19 +105,19 @@ unsigned LightVolumePass::unselectableTargets(const LightPassOptions& options, s
   return counts ? drawnTargets->races : 0u;
 }
 
-LightPassDraws LightVolumePass::execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
-                                        const LightPassOptions& options, LightPassTarget& target,
-                                        const ShadowTargets* drawnTargets) {
+LightPassDraws LightVolumePass::execute(const LightPassInputs& in, const LightPassOptions& options,
+                                        const LightPassTarget& target) {
+  const GpuHierarchy& hierarchy = in.hierarchy;
   // Brute force draws no grid level; an unbuilt hierarchy has none either.
   const int L = options.pass.bruteForce || hierarchy.levels.empty() ? 0 : hierarchy.grid.levels;
   checkTarget(options, target, L);
   LightPassDraws counts;
-  const std::vector<Draw> draws = drawList(lights, lightCount, hierarchy, options, L, counts);
-  const unsigned m = unselectableTargets(options, lightCount, L, drawnTargets);
+  const std::vector<Draw> draws = drawList(in.lights, in.lightCount, hierarchy, options, L, counts);
+  const unsigned m = unselectableTargets(options, in.lightCount, L, in.drawnTargets);
   uploadUniforms(draws, hierarchy, options, target.layout, L, m);
   bindTargets(options, target);
   if (options.pass.volumeCulling) prepareCulling(draws, hierarchy, options, target, L);
-  bindInputs(options, target, lights, m > 0 ? drawnTargets : nullptr);
+  bindInputs(options, target, in.lights, m > 0 ? in.drawnTargets : nullptr);
   issueDraws(draws, options, m > 0);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl::checkErrors("light pass");
@@ -161,12 +163,11 @@ std::vector<LightVolumePass::Draw> LightVolumePass::drawList(const gl::Buffer& l
 void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy,
                                      const LightPassOptions& options, const TileLayout& layout, int L,
                                      unsigned drawnTargets) {
-  gl::ensureSize(uniforms_, std::max<size_t>(draws.size(), 1) * uniformStride_);
-  std::vector<unsigned char> staging(std::max<size_t>(draws.size(), 1) * uniformStride_, 0);
+  std::vector<gpu::LightPassUniforms> blocks(draws.size());
   const int n = layout.tilesPerAxis;
   for (size_t i = 0; i < draws.size(); ++i) {
     const Draw& d = draws[i];
-    gpu::LightPassUniforms u{};
+    gpu::LightPassUniforms& u = blocks[i];
     u.alpha = options.pass.alpha;
     u.topCellSize = float(hierarchy.grid.topCellSize);
     u.clampDistance = options.clampDistance;
@@ -184,22 +185,19 @@ void LightVolumePass::uploadUniforms(const std::vector<Draw>& draws, const GpuHi
     u.bruteForce = options.pass.bruteForce ? 1u : 0u;
     u.cullingDepthScale = options.sceneSize;
     u.shadowSamples = unsigned(options.shadows.samples);
-    u.selectFlags = (options.shadows.skipFinest ? gpu::kSelectSkipFinest : 0u) |
-                    (options.shadows.uniformSelection ? gpu::kSelectUniform : 0u) |
-                    (options.shadows.blendTargets ? gpu::kSelectBlendTargets : 0u);
+    u.selectFlags = selectionFlags(options.shadows);
     u.drawnTargets = drawnTargets;
     u.frameSeed = options.frameSeed;
     u.tileRotation = options.tileRotation % unsigned(n * n);
     u.defensive = options.shadows.defensive;
     for (int l = 1; l <= L; ++l) u.levelOffsets[l / 4][l % 4] = unsigned(hierarchy.levels[size_t(l)].offset);
-    std::memcpy(staging.data() + i * uniformStride_, &u, sizeof(u));
   }
-  uniforms_.update(staging.data(), staging.size());
+  uniforms_.upload(blocks);
 }
 
 // Clears and binds what the fragments write (irradiance, fragment counts, shadow slots) and read (the
 // surfaces); with volume culling the framebuffer also holds the culling depth and slices.
-void LightVolumePass::bindTargets(const LightPassOptions& options, LightPassTarget& target) {
+void LightVolumePass::bindTargets(const LightPassOptions& options, const LightPassTarget& target) {
   const glm::ivec2 size = target.layout.targetSize();
   // Made per frame (the targets may change) and kept until the next: deleting a bound framebuffer unbinds it.
   framebuffer_ =
@@ -228,8 +226,8 @@ void LightVolumePass::prepareCulling(const std::vector<Draw>& draws, const GpuHi
 
 // What the light volumes read and write besides the framebuffer; after the culling preparation, which
 // uses image units, textures and storage bindings of its own.
-void LightVolumePass::bindInputs(const LightPassOptions& options, LightPassTarget& target, const gl::Buffer& lights,
-                                 const ShadowTargets* drawnTargets) {
+void LightVolumePass::bindInputs(const LightPassOptions& options, const LightPassTarget& target,
+                                 const gl::Buffer& lights, const ShadowTargets* drawnTargets) {
   if (options.pass.overdraw) target.fragmentCounts->bindImage(LGH_IMAGE_FRAGMENT_COUNTS, GL_READ_WRITE);
   if (options.shadows.samples > 0) {
     target.shadowSlots->totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
@@ -265,7 +263,7 @@ void LightVolumePass::issueDraws(const std::vector<Draw>& draws, const LightPass
     const Draw& d = draws[i];
     const size_t stride = d.s0Input ? sizeof(gpu::GpuLight) : sizeof(gpu::GpuGridLight);
     d.buffer->bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, d.boundOffset * stride, d.boundLights * stride);
-    uniforms_.bindRange(GL_UNIFORM_BUFFER, LGH_UBO_PASS, i * uniformStride_, sizeof(gpu::LightPassUniforms));
+    uniforms_.bind(i, LGH_UBO_PASS);
     program(d, options, countUnselectable).use();
     if (d.shape == gpu::kVolumeCube)
       glEnable(GL_CULL_FACE);

@@ -22,6 +22,7 @@
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
 #include "render/gl/texture.h"
+#include "render/gl/uniform_blocks.h"
 #include "render/passes/interleave_pass.h"
 #include "render/passes/lgh_build_pass.h"
 #include "render/passes/shadow_targets_pass.h"
@@ -44,6 +45,19 @@ struct LightPassOptions {
   unsigned tileRotation = 0;  // n x n interleaving: lights are dealt to tile (index + rotation) mod n^2
 };
 
+// gpu::kSelect* of a resolved estimator: the selection the light pass makes, which the shadow rays recompute.
+unsigned selectionFlags(const ShadowEstimator& shadows);
+
+// What the light pass reads besides its surfaces (LightPassTarget).
+struct LightPassInputs {
+  const gl::Buffer& lights;  // S0 (gpu::GpuLight), `lightCount` valid
+  size_t lightCount = 0;
+  const GpuHierarchy& hierarchy;
+  // This frame's shadow-ray targets, through which the pass counts the grid lights it cannot select
+  // (options.shadows.countUnselectable; it throws if the input lights exceed inputLightsPerBlock()).
+  const ShadowTargets* drawnTargets = nullptr;
+};
+
 // Per pixel of the light pass's target: the running importance total, k selected lights, and what the
 // grid lights that cannot be selected there add.
 struct ShadowSlots {
@@ -56,6 +70,7 @@ struct ShadowSlots {
 };
 
 // The surfaces a light pass shades and the targets it writes, all in the same (tiled or not) layout.
+// (Outputs structs hold references to what a pass writes: passed as const, written through.)
 struct LightPassTarget {
   const gl::Texture2D& position;
   const gl::Texture2D& normal;
@@ -78,11 +93,7 @@ class LightVolumePass {
   // needs every input light in one block).
   size_t inputLightsPerBlock() const { return maxBlockLights_; }
 
-  // drawnTargets: this frame's shadow-ray targets, through which the pass counts the grid lights it cannot
-  // select (options.shadows.countUnselectable; it throws if the input lights exceed inputLightsPerBlock()).
-  LightPassDraws execute(const gl::Buffer& lights, size_t lightCount, const GpuHierarchy& hierarchy,
-                         const LightPassOptions& options, LightPassTarget& target,
-                         const ShadowTargets* drawnTargets = nullptr);
+  LightPassDraws execute(const LightPassInputs& in, const LightPassOptions& options, const LightPassTarget& target);
 
  private:
   struct Draw;
@@ -94,22 +105,21 @@ class LightVolumePass {
                              const LightPassOptions& options, int levels, LightPassDraws& counts) const;
   void uploadUniforms(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy, const LightPassOptions& options,
                       const TileLayout& layout, int levels, unsigned drawnTargets);
-  void bindTargets(const LightPassOptions& options, LightPassTarget& target);
+  void bindTargets(const LightPassOptions& options, const LightPassTarget& target);
   void prepareCulling(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy, const LightPassOptions& options,
                       const LightPassTarget& target, int levels);
-  void bindInputs(const LightPassOptions& options, LightPassTarget& target, const gl::Buffer& lights,
+  void bindInputs(const LightPassOptions& options, const LightPassTarget& target, const gl::Buffer& lights,
                   const ShadowTargets* drawnTargets);
   void issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options, bool countUnselectable);
   const gl::Program& program(const Draw& draw, const LightPassOptions& options, bool countUnselectable);
 
   bool floatAtomics_;
   std::map<std::string, gl::Program> programs_;  // by their defines, compiled on first use
-  gl::Buffer uniforms_;                          // one LightPassUniforms per draw, at aligned offsets
-  size_t uniformStride_ = 0;
-  size_t maxBlockLights_ = 0;               // S0 lights per storage block binding
-  gl::VertexArrayHandle emptyVertexArray_;  // draws take their vertices from gl_VertexID
-  VolumeCulling culling_;                   // depth, slices, pyramid and sorting for culled volumes
-  gl::Framebuffer framebuffer_;             // irradiance (+ culling depth-stencil), made by each execute
+  gl::UniformBlocks uniforms_;                   // one gpu::LightPassUniforms per draw
+  size_t maxBlockLights_ = 0;                    // S0 lights per storage block binding
+  gl::VertexArrayHandle emptyVertexArray_;       // draws take their vertices from gl_VertexID
+  VolumeCulling culling_;                        // depth, slices, pyramid and sorting for culled volumes
+  gl::Framebuffer framebuffer_;                  // irradiance (+ culling depth-stencil), made by each execute
 };
 
 }  // namespace lgh

@@ -21,8 +21,8 @@ ShadowTargetsPass::ShadowTargetsPass()
   maxBlockBytes_ = std::max(gl::maxStorageBlockBytes(), gl::kMinStorageBlockBytes);
 }
 
-void ShadowTargetsPass::execute(const gl::Buffer& inputLights, size_t inputLightCount, const GpuHierarchy& hierarchy,
-                                unsigned races, unsigned frameSeed, ShadowTargets& out) {
+void ShadowTargetsPass::execute(const ShadowTargetsInputs& in, unsigned races, unsigned frameSeed, ShadowTargets& out) {
+  const GpuHierarchy& hierarchy = in.hierarchy;
   out.races = races;
   const size_t entries = std::max<size_t>(hierarchy.gridLightCount * races, 1);
   ensureSize(out.targets, entries * sizeof(GLuint));
@@ -36,15 +36,15 @@ void ShadowTargetsPass::execute(const gl::Buffer& inputLights, size_t inputLight
   const int levels = hierarchy.gridLightCount > 0 ? int(hierarchy.lookups.size()) - 1 : 0;
   for (int level = 1; level <= levels; ++level) {
     const unsigned seed = frameSeed ^ (0x632be5abu * unsigned(level));
-    runLevel(raceFromLights_, raceFromGridLights_, inputLights, inputLightCount, hierarchy, level, races, seed);
-    runLevel(resolveFromLights_, resolveFromGridLights_, inputLights, inputLightCount, hierarchy, level, races, seed);
+    runLevel(raceFromLights_, raceFromGridLights_, in, level, races, seed);
+    runLevel(resolveFromLights_, resolveFromGridLights_, in, level, races, seed);
   }
   gl::checkErrors("shadow targets");
 }
 
 void ShadowTargetsPass::runLevel(const gl::Program& fromLights, const gl::Program& fromGridLights,
-                                 const gl::Buffer& inputLights, size_t inputLightCount, const GpuHierarchy& hierarchy,
-                                 int level, unsigned races, unsigned seed) {
+                                 const ShadowTargetsInputs& in, int level, unsigned races, unsigned seed) {
+  const GpuHierarchy& hierarchy = in.hierarchy;
   const LghLevelLookup& lookup = hierarchy.lookups[size_t(level)];
   const gpu::LghGridParams params = gridParamsFor(hierarchy.grid, level, lookup.capacity);
   gridParams_.update(&params, sizeof params);
@@ -69,10 +69,10 @@ void ShadowTargetsPass::runLevel(const gl::Program& fromLights, const gl::Progra
   }
   // S0 in chunks of one storage block.
   const size_t chunk = lightChunkSize(maxBlockBytes_);
-  for (size_t first = 0; first < inputLightCount; first += chunk) {
-    const size_t count = std::min(chunk, inputLightCount - first);
-    inputLights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight),
-                          count * sizeof(gpu::GpuLight));
+  for (size_t first = 0; first < in.inputLightCount; first += chunk) {
+    const size_t count = std::min(chunk, in.inputLightCount - first);
+    in.inputLights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, first * sizeof(gpu::GpuLight),
+                             count * sizeof(gpu::GpuLight));
     dispatch(fromLights, count, 0, first);
   }
 }

@@ -3,7 +3,8 @@
 // its input lights, drawn with probability equal to that light's share of the grid light's importance
 // (lgh/cluster_shares.h), so that its expected visibility is the cluster's share-weighted visibility
 // of real lights, not that of a point inside the cluster (which may lie inside a wall).
-//   in:  input lights S0, the hierarchy (grid lights and each level's vertex lookup), races m, frame seed
+//   in:  ShadowTargetsInputs: input lights S0, the hierarchy (grid lights and each level's vertex lookup);
+//        races m, frame seed
 //   out: ShadowTargets: for merged grid light g, targets[g m + j] is the input light race j drew
 // New draws every frame (glsl/shadow_targets.comp: two kernels per level over S0 and each level's
 // sources, O(8 m) atomics per source), so an image accumulated over frames sees every light.
@@ -19,16 +20,21 @@ struct ShadowTargets {
   unsigned races = 0;  // m; 0: no targets drawn, rays aim at the cluster's jittered centre
 };
 
+struct ShadowTargetsInputs {
+  const gl::Buffer& inputLights;  // S0 (gpu::GpuLight), `inputLightCount` valid
+  size_t inputLightCount = 0;
+  const GpuHierarchy& hierarchy;
+};
+
 class ShadowTargetsPass {
  public:
   ShadowTargetsPass();
-  void execute(const gl::Buffer& inputLights, size_t inputLightCount, const GpuHierarchy& hierarchy, unsigned races,
-               unsigned frameSeed, ShadowTargets& out);
+  void execute(const ShadowTargetsInputs& in, unsigned races, unsigned frameSeed, ShadowTargets& out);
 
  private:
   // Runs the race (or the resolve) of `level` over its sources.
-  void runLevel(const gl::Program& fromLights, const gl::Program& fromGridLights, const gl::Buffer& inputLights,
-                size_t inputLightCount, const GpuHierarchy& hierarchy, int level, unsigned races, unsigned seed);
+  void runLevel(const gl::Program& fromLights, const gl::Program& fromGridLights, const ShadowTargetsInputs& in,
+                int level, unsigned races, unsigned seed);
 
   gl::Program raceFromLights_, resolveFromLights_, raceFromGridLights_, resolveFromGridLights_;
   gl::Buffer raceTimes_, gridParams_;

@@ -60,8 +60,9 @@ struct CornellFrame {
   ImageRGBA glBruteForce(bool shadowed) const {
     static BruteForcePass pass;
     gl::Texture2D out(settings.image.width, settings.image.height, GL_RGBA32F);
-    pass.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
-                 renderer.clampDistance(), out, shadowed ? &gpu : nullptr);
+    pass.execute(
+        {renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, shadowed ? &gpu : nullptr},
+        renderer.clampDistance(), out);
     return fromGLRows(settings.image.width, settings.image.height, out.readRGBA());
   }
 };

@@ -42,8 +42,8 @@ class AccumulationTest : public GLTest {
   ImageRGBA exactShadowed(const Renderer& renderer, const SceneGpu& gpu) const {
     BruteForcePass bruteForce;
     gl::Texture2D exact(settings.image.width, settings.image.height, GL_RGBA32F);
-    bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
-                       renderer.clampDistance(), exact, &gpu);
+    bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, &gpu},
+                       renderer.clampDistance(), exact);
     return fromGLRows(settings.image.width, settings.image.height, exact.readRGBA());
   }
   // The relative RMSE of the last frame's shadowed indirect irradiance (irradiance x visibility).

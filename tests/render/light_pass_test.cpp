@@ -52,7 +52,7 @@ ImageRGBA exactIrradiance(const Renderer& renderer) {
   static BruteForcePass bruteForce;
   const RenderSettings& s = renderer.settings();
   gl::Texture2D out(s.image.width, s.image.height, GL_RGBA32F);
-  bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
+  bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count},
                      renderer.clampDistance(), out);
   return fromGLRows(s.image.width, s.image.height, out.readRGBA());
 }

@@ -94,7 +94,7 @@ TEST_F(ShadowTargetsTest, DrawsFollowImportanceShares) {
     ASSERT_GE(tested.size(), 6u);
     ShadowTargets targets;
     for (int frame = 0; frame < kFrames; ++frame) {
-      targetsPass.execute(buffer, lights.size(), hierarchy, kRaces, 0x9e3779b9u * unsigned(frame + 1), targets);
+      targetsPass.execute({buffer, lights.size(), hierarchy}, kRaces, 0x9e3779b9u * unsigned(frame + 1), targets);
       for (Tested& t : tested) {
         for (GLuint light : targets.targets.download<GLuint>(kRaces, t.gpuIndex * kRaces)) {
           const auto it = std::lower_bound(t.shares.begin(), t.shares.end(), size_t(light),

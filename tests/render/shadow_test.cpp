@@ -212,8 +212,8 @@ TEST_F(ShadowTest, ImportanceSelectionBeatsUniform) {
 
   static BruteForcePass bruteForce;
   gl::Texture2D exactTexture(settings.image.width, settings.image.height, GL_RGBA32F);
-  bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
-                     renderer.clampDistance(), exactTexture, &gpu);
+  bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, &gpu},
+                     renderer.clampDistance(), exactTexture);
   const ImageRGBA exact = fromGLRows(settings.image.width, settings.image.height, exactTexture.readRGBA());
 
   auto shadowedError = [&](bool uniform, int k, int filterPasses) {

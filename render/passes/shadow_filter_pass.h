@@ -1,0 +1,48 @@
+#pragma once
+// The shadow filter (docs/design.md §6): an a-trous filter over the raw visibility ratio, applied as a
+// ratio estimator with the unshadowed irradiance (glsl/atrous.comp); a ratio accumulated over N frames
+// (N in the raw ratio's alpha) is filtered with its ratio sigma x N^-sigmaFade.
+//   in:  ShadowFilterInputs: the G-buffer, the raw ratio (ShadowRayPass, or accumulated), the unshadowed
+//        irradiance
+//   out: visibility factor, RGBA32F: r the filtered ratio (times the filtered mean weight D, shrunk toward 1
+//        by its variance, when correcting the irradiance), g the filtered ratio, b the mean weight
+
+#include "render/gl/program.h"
+#include "render/gl/texture.h"
+#include "render/gl/uniform_blocks.h"
+#include "render/passes/gbuffer_pass.h"
+#include "render/settings.h"
+
+namespace lgh {
+
+struct ShadowFilterInputs {
+  const GBuffer& gbuffer;
+  const gl::Texture2D& rawRatio;    // r ratio, g T's variance, b T, a frames
+  const gl::Texture2D& irradiance;  // unshadowed, full resolution
+};
+
+// How the filter's output scales the LGH's irradiance by the shadow samples' mean weight D: by
+// 1 + f^2 / (f^2 + var D) (D - 1), var D the filtered variance of the pixel's D.
+struct IrradianceCorrection {
+  bool enabled = false;
+  float lghError = 0.0f;  // f: the LGH irradiance's expected relative error
+};
+
+struct ShadowFilterOptions {
+  ShadowFilterSettings filter;
+  IrradianceCorrection correction;  // from the resolved ShadowEstimator
+  float sigmaFade = 0.0f;           // accumulating: AccumulationSettings::filterFade; else 0
+};
+
+class ShadowFilterPass {
+ public:
+  ShadowFilterPass();
+  void execute(const ShadowFilterInputs& in, const ShadowFilterOptions& options, gl::Texture2D& visibility);
+
+ private:
+  gl::Program program_;
+  gl::UniformBlocks uniforms_;  // one gpu::ShadowFilterUniforms per dispatch
+  gl::Texture2D ping_, pong_;
+};
+
+}  // namespace lgh

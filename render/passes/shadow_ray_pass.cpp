@@ -1,0 +1,56 @@
+#include "render/passes/shadow_ray_pass.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "render/gl/debug.h"
+#include "shared/bindings.h"
+#include "shared/shadow_ray_types.h"
+
+namespace lgh {
+
+ShadowRayPass::ShadowRayPass()
+    : program_(gl::Program::compute("shadow_rays.comp")), uniforms_(sizeof(gpu::ShadowRayUniforms)) {}
+
+void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& options, gl::Texture2D& rawRatio) {
+  const bool drawnTargets = in.targets.races > 0 && in.targets.targets;
+  gpu::ShadowRayUniforms u{};
+  u.samples = unsigned(in.slots.k);
+  u.tilesPerAxis = unsigned(in.layout.tilesPerAxis);
+  u.tileWidth = unsigned(in.layout.tileSize.x);
+  u.tileHeight = unsigned(in.layout.tileSize.y);
+  u.races = drawnTargets ? in.targets.races : 0u;
+  u.selectFlags = selectionFlags(options.shadows);
+  u.resampleTargets = options.shadows.resampleTargets ? 1u : 0u;
+  u.weighTargets = options.shadows.weighTargets ? 1u : 0u;
+  u.spread = options.shadows.spread;
+  u.defensive = options.shadows.defensive;
+  u.sampleSpread = options.shadows.correctionSampleSpread;
+  u.clampDistance = options.clampDistance;
+  u.alpha = options.alpha;
+  u.topCellSize = float(in.hierarchy.grid.topCellSize);
+  u.firstLevel = unsigned(options.startLevel);
+  u.levels = unsigned(std::max(in.hierarchy.grid.levels, 0));
+  u.bruteForce = options.bruteForce ? 1u : 0u;
+  u.frameSeed = options.frameSeed;
+  uniforms_.upload(std::vector<gpu::ShadowRayUniforms>{u});
+
+  in.scene.bindForCompute();
+  in.gbuffer.bindForReading();
+  in.inputLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  in.slots.totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  in.slots.slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  in.slots.unselectable.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);
+  in.lightPassIrradiance.bindTexture(LGH_TEXTURE_SHADOW_IRRADIANCE);
+  // A buffer must be bound even when there is no hierarchy (brute force): the input lights stand in.
+  (in.hierarchy.gridLights ? in.hierarchy.gridLights : in.inputLights)
+      .bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+  (drawnTargets ? in.targets.targets : in.inputLights).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
+  rawRatio.bindImage(LGH_IMAGE_SHADOW_RATIO, GL_WRITE_ONLY);
+  uniforms_.bind(0, LGH_UBO_PASS);
+  program_.dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  gl::checkErrors("shadow rays");
+}
+
+}  // namespace lgh

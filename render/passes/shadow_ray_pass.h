@@ -1,0 +1,56 @@
+#pragma once
+// Shadow rays (docs/design.md §5), after the light pass has picked k lights per pixel: one ray per filled
+// slot from the pixel's surface to the light (to one of a grid light's drawn input lights, or to its
+// jittered centre), any-hit through the scene's BVH, each weighed by what its light adds over the
+// importance the light pass selected it by (glsl/shadow_rays.comp).
+//   in:  ShadowRayInputs: the scene's BVH, the G-buffer, the input lights S0 and the hierarchy, this
+//        frame's drawn targets, the shadow slots and the light pass's irradiance (both in its layout)
+//   out: raw visibility ratio, RGBA32F, full resolution: r the ratio sum w V / sum w, g the variance of
+//        T, b T (the samples' estimate of what the input lights add, the ratio's weight), a 1
+
+#include "render/gl/program.h"
+#include "render/gl/texture.h"
+#include "render/gl/uniform_blocks.h"
+#include "render/passes/gbuffer_pass.h"
+#include "render/passes/interleave_pass.h"
+#include "render/passes/lgh_build_pass.h"
+#include "render/passes/light_volume_pass.h"
+#include "render/passes/shadow_targets_pass.h"
+#include "render/scene/scene_gpu.h"
+#include "render/shadow_estimator.h"
+
+namespace lgh {
+
+struct ShadowRayInputs {
+  const SceneGpu& scene;  // the BVH the rays traverse
+  const GBuffer& gbuffer;
+  const gl::Buffer& inputLights;  // S0 (gpu::GpuLight)
+  const GpuHierarchy& hierarchy;
+  const ShadowTargets& targets;              // this frame's drawn input lights per grid light (races 0: none)
+  const ShadowSlots& slots;                  // the light pass's k selected lights per pixel, in `layout`
+  TileLayout layout;                         // the light pass's (tiled) layout
+  const gl::Texture2D& lightPassIrradiance;  // in `layout`
+};
+
+// What the rays read of the light pass that filled the slots (it must have run with the same values, to
+// recompute each selected light's importance as it did), and the resolved estimator.
+struct ShadowRayOptions {
+  ShadowEstimator shadows;
+  float alpha = 1.0f;          // R_l = alpha h_l
+  int startLevel = 1;          // finest level blended
+  bool bruteForce = false;     // every light weight 1
+  float clampDistance = 0.0f;  // d_c, resolved
+  unsigned frameSeed = 0;
+};
+
+class ShadowRayPass {
+ public:
+  ShadowRayPass();
+  void execute(const ShadowRayInputs& in, const ShadowRayOptions& options, gl::Texture2D& rawRatio);
+
+ private:
+  gl::Program program_;
+  gl::UniformBlocks uniforms_;  // one gpu::ShadowRayUniforms
+};
+
+}  // namespace lgh
