@@ -353,7 +353,7 @@ void Viewer::display() {
   options.largestCount = lastFrame_.lights.maxRasterized;
   displayPass_.execute(renderer_.texture(state_.view), options, displayImage_);
   if (state_.pointsLevel > 0 && s.indirect && !s.lightPass.bruteForce)
-    gridPointsPass_.execute(renderer_.hierarchy(), state_.pointsLevel, frameView_, renderer_.gbuffer().position,
+    gridPointsPass_.execute({renderer_.hierarchy(), frameView_, renderer_.gbuffer().position}, state_.pointsLevel,
                             state_.pointSize, displayImage_);
 }
 

@@ -24,11 +24,6 @@ class GridPointsPass {
   GridPointsPass();
   // level in 1..hierarchy.grid.levels (other levels draw nothing). Returns the number of points drawn.
   size_t execute(const GridPointsInputs& in, int level, float pointSize, DisplayImage& out);
-  // The former signature, for render/app/viewer_app.cpp's call until it moves to the one above; then removed.
-  size_t execute(const GpuHierarchy& hierarchy, int level, const CameraView& view, const gl::Texture2D& position,
-                 float pointSize, DisplayImage& out) {
-    return execute(GridPointsInputs{hierarchy, view, position}, level, pointSize, out);
-  }
 
  private:
   gl::Program program_;

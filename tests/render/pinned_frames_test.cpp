@@ -82,8 +82,8 @@ class PinnedFramesTest : public GLTest {
   double referenceError(const Renderer& renderer, const SceneGpu& gpu) const {
     BruteForcePass bruteForce;
     gl::Texture2D exact(settings.image.width, settings.image.height, GL_RGBA32F);
-    bruteForce.execute(renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count,
-                       renderer.clampDistance(), exact, &gpu);
+    bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, &gpu},
+                       renderer.clampDistance(), exact);
     ImageRGBA shadowed = renderer.readImage(Aov::Irradiance);
     const ImageRGBA ratio = renderer.readImage(Aov::Visibility);
     for (size_t i = 0; i < shadowed.pixels.size(); ++i) shadowed.pixels[i] *= ratio.pixels[i].r;
