@@ -11,10 +11,15 @@
 # ctest runs it that way (test GpuRunReduced, under a minute).
 #
 #   bench/gpu_run.sh [--out DIR] [--build-dir DIR] [--no-build] [--reduced] [--require-gpu] [--jobs N]
+#                    [--check-filters]
 #
-#   --reduced      the reduced version even on a GPU
-#   --require-gpu  exit 2 when no hardware GPU is found, instead of running the reduced version
-#   --no-build     use the binaries already in --build-dir
+#   --reduced        the reduced version even on a GPU
+#   --require-gpu    exit 2 when no hardware GPU is found, instead of running the reduced version
+#   --no-build       use the binaries already in --build-dir
+#   --check-filters  only check that every pattern of both modes' test filters selects a test of
+#                    render_tests (no GL, no device; ctest GpuRunFiltersListed), then exit
+# The tests step fails when a filter pattern selects no test (a renamed test would otherwise drop out
+# of the run silently: gtest passes a filter that matches nothing) or fewer tests ran than it selects.
 # Exit status: 0 when every step passed, 1 when a test or a benchmark check failed, 2 no GPU with
 # --require-gpu, 3 bad arguments or a failed build.
 set -uo pipefail
@@ -26,6 +31,7 @@ build=1
 mode=auto
 require_gpu=0
 jobs=$(nproc 2>/dev/null || echo 4)
+check_filters=0
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --out) out=$2; shift 2 ;;
@@ -34,7 +40,8 @@ while [[ $# -gt 0 ]]; do
     --reduced) mode=reduced; shift ;;
     --require-gpu) require_gpu=1; shift ;;
     --jobs) jobs=$2; shift 2 ;;
-    -h|--help) sed -n '2,20p' "$0"; exit 0 ;;
+    --check-filters) check_filters=1; build=0; shift ;;
+    -h|--help) sed -n '2,25p' "$0"; exit 0 ;;
     *) echo "gpu_run.sh: unknown argument '$1' (see --help)" >&2; exit 3 ;;
   esac
 done
@@ -71,9 +78,57 @@ fi
 render="$build_dir/lgh-render"
 bench="$build_dir/lgh-bench"
 tests="$build_dir/tests/render_tests"
-for exe in "$render" "$bench" "$tests"; do
+exes=("$render" "$bench" "$tests")
+[[ $check_filters == 1 ]] && exes=("$tests")
+for exe in "${exes[@]}"; do
   [[ -x $exe ]] || { log "missing $exe (build first, or drop --no-build)"; exit 3; }
 done
+
+# The GL tests of step 3 that exercise the device path (context, build, light pass, shadows, pinned
+# frames), as gtest filters: the full run's and the reduced run's.
+full_filter='ContextTest.*:Headless/BackendTest.*:LghBuild*:LightPassTest.*:ShadowTest.*:PinnedFramesTest.*'
+reduced_filter='ContextTest.IsCore45WithComputeShaders:LightPassTest.CulledVolumesShadeWhatCubesShade:LightPassTest.CullingLeavesShadowSelectionUnchanged'
+# render_tests' enabled tests, a full name (Suite.Test) a line: listed, not run (no GL context).
+list_tests() {
+  "$tests" --gtest_list_tests |
+    awk '/^[^ ]/ { suite = $1; next }
+         /^  [^ ]/ && suite !~ /(^|\/)DISABLED_/ && $1 !~ /^DISABLED_/ { print suite $1 }'
+}
+# Prints how many of the tests listed in $listed (list_tests) FILTER selects; fails, logging each, when
+# one of its patterns (gtest's wildcards * and ?, which bash's [[ == ]] reads alike) selects none.
+filter_test_count() {
+  local pattern name n total=0 missing=0
+  local -a patterns names
+  IFS=: read -ra patterns <<< "${1%%-*}"  # the positive patterns (before any '-')
+  mapfile -t names <<< "$listed"
+  for pattern in "${patterns[@]}"; do
+    n=0
+    for name in "${names[@]}"; do [[ $name == $pattern ]] && n=$(( n + 1 )); done
+    if [[ $n == 0 ]]; then
+      log "filter: '$pattern' selects no test of $tests (renamed or removed? update the filter)" >&2
+      missing=1
+    fi
+  done
+  for name in "${names[@]}"; do  # each test once, however many patterns select it
+    for pattern in "${patterns[@]}"; do
+      if [[ $name == $pattern ]]; then total=$(( total + 1 )); break; fi
+    done
+  done
+  echo "$total"
+  return $missing
+}
+listed=$(list_tests) || { log "listing the tests of $tests failed"; exit 1; }
+if [[ $check_filters == 1 ]]; then
+  for name in full reduced; do
+    filter_var=${name}_filter
+    if count=$(filter_test_count "${!filter_var}"); then
+      log "filter ($name): every pattern selects a test, $count in all"
+    else
+      log "filter ($name): FAILED"; status=1
+    fi
+  done
+  exit $status
+fi
 
 # --- 2. Which device EGL gives us: the device platform and a hardware renderer, or not.
 cornell="$source_dir/data/cornell_box.gltf"
@@ -94,13 +149,22 @@ else
 fi
 
 # --- 3. The GL tests that exercise the device path (context, build, light pass, shadows, pinned frames).
-if [[ $mode == full ]]; then
-  filter='ContextTest.*:Headless/BackendTest.*:LghBuild*:LightPassTest.*:ShadowTest.*:PinnedFramesTest.*'
-else
-  filter='ContextTest.IsCore45WithComputeShaders:LightPassTest.CulledVolumesShadeWhatCubesShade:LightPassTest.CullingLeavesShadowSelectionUnchanged'
+filter=$reduced_filter
+[[ $mode == full ]] && filter=$full_filter
+if ! selected=$(filter_test_count "$filter"); then
+  log "tests: FAILED (the filter names a test that render_tests does not have)"
+  status=1
 fi
 export LGH_TEST_BACKEND=$backend
 step tests "$tests" --gtest_filter="$filter" --gtest_output="json:$out/tests.json"
+# gtest's own count: "[==========] N tests from M test suites ran."
+ran=$(sed -nE 's/^\[==========\] ([0-9]+) tests? from .* ran\..*/\1/p' "$out/tests.txt" | tail -n 1)
+if (( ${ran:-0} < selected )); then
+  log "tests: FAILED (${ran:-0} tests ran, the filter selects $selected)"
+  status=1
+else
+  log "tests: $ran tests ran, as many as the filter selects"
+fi
 
 # --- 4. The paper's tables.
 sponza="$source_dir/../shared/scenes/sponza_sun/sponza_sun.gltf"
