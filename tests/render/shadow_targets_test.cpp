@@ -224,10 +224,6 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
           weighted.total,  blended.total,          exact.total,      reachableWeighted, reachableBlended};
 }
 
-// The raw shadow ratio texture (r ratio, g T's variance, b T) at `pixel` of an image of `image`'s size.
-glm::vec4 rawRatio(const Renderer& renderer, const ImageRGBA& image, size_t pixel) {
-  return fromGLRows(image.width, image.height, renderer.texture(Aov::Ratio).readRGBA()).pixels[pixel];
-}
 
 // 24 x 24, the scene's point lights as S0 (no VPLs, no emitters), 3 levels, alpha 2, the raw ratio.
 RenderSettings pointLightSettings() {
