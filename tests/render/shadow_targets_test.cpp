@@ -224,7 +224,6 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
           weighted.total,  blended.total,          exact.total,      reachableWeighted, reachableBlended};
 }
 
-
 // 24 x 24, the scene's point lights as S0 (no VPLs, no emitters), 3 levels, alpha 2, the raw ratio.
 RenderSettings pointLightSettings() {
   RenderSettings settings;
