@@ -165,11 +165,33 @@ struct ExpectedRatios {
   // the light pass counts the unselectable ones (shadow-count-unselectable).
   double weightedTotal, blendedTotal, exactTotal, reachableWeightedTotal, reachableBlendedTotal;
 };
-ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>& lights, const glm::dvec3& x,
-                              const glm::dvec3& n, double wallX, const RenderSettings& settings, float clampDistance) {
-  const Hierarchy cpu = buildGather(lights, gpu.grid);
-  const ClusterSources clusters(lights, cpu);
-  const int levels = gpu.grid.levels, first = settings.lightPass.startLevel;
+// What expectedRatios reads of a hierarchy, read once (the tests evaluate it at hundreds of pixels): the
+// grid, each level's grid lights as the GPU built them, and the exact shares of their input lights (from a
+// CPU build over the same lights).
+struct HierarchyShares {
+  HierarchyShares(const GpuHierarchy& gpu, const std::vector<Light>& lights) : grid(gpu.grid), lights(lights) {
+    const Hierarchy cpu = buildGather(lights, gpu.grid);
+    const ClusterSources clusters(lights, cpu);
+    gridLights.resize(size_t(std::max(grid.levels, 0)) + 1);
+    shares.resize(gridLights.size());
+    for (int level = 1; level <= grid.levels; ++level) {
+      const std::vector<size_t> cpuIndex = cpuIndexOfGpuLights(gpu, cpu, level);
+      gridLights[size_t(level)] = gpu.downloadLevel(level);
+      for (size_t g = 0; g < gridLights[size_t(level)].size(); ++g)
+        shares[size_t(level)].push_back(clusters.shares(level, cpuIndex[g]));
+    }
+  }
+  GridGeometry grid;
+  std::vector<Light> lights;
+  std::vector<std::vector<gpu::GpuGridLight>> gridLights;    // [level][GPU index]
+  std::vector<std::vector<std::vector<LightShare>>> shares;  // [level][GPU index]: its input lights' shares
+};
+
+ExpectedRatios expectedRatios(const HierarchyShares& hierarchy, const glm::dvec3& x, const glm::dvec3& n, double wallX,
+                              const RenderSettings& settings, float clampDistance) {
+  const std::vector<Light>& lights = hierarchy.lights;
+  const int levels = hierarchy.grid.levels, first = settings.lightPass.startLevel;
+  const bool defensive = resolveShadowEstimator(settings.shadows, {}).estimator.defensive > 0;
   const auto geometric = [&](const Light& l) {
     return luminance(lightContribution(glm::dvec3(l.position), glm::dvec3(l.intensity), glm::dvec3(l.normal),
                                        omniFraction(l), x, &n, clampDistance)) /
@@ -182,19 +204,18 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
   } byShare, byContribution, weighted, blended, exact;
   double reachableWeighted = 0, reachableBlended = 0;
   for (int level = std::max(first, 1) + (settings.shadows.skipFinest ? 1 : 0); level <= levels; ++level) {
-    const std::vector<size_t> cpuIndex = cpuIndexOfGpuLights(gpu, cpu, level);
-    const std::vector<gpu::GpuGridLight> gpuLevel = gpu.downloadLevel(level);
+    const std::vector<gpu::GpuGridLight>& gpuLevel = hierarchy.gridLights[size_t(level)];
     for (size_t g = 0; g < gpuLevel.size(); ++g) {
       const gpu::GpuGridLight& light = gpuLevel[g];
       const double d = glm::distance(glm::dvec3(light.position), x);
       const LevelRole role = levelRole(level, first, levels);
-      const double radius = gpu.grid.radius(level, settings.lightPass.alpha);
+      const double radius = hierarchy.grid.radius(level, settings.lightPass.alpha);
       const double blend = blendWeight(role, d, radius);
       const double f =
           blend * luminance(lightContribution(glm::dvec3(light.position), glm::dvec3(light.intensity),
                                               glm::dvec3(light.meanNormal), light.omniFraction, x, &n, clampDistance));
       Sum shareSum, contributionSum, blendedSum;
-      for (const LightShare& s : clusters.shares(level, cpuIndex[g])) {
+      for (const LightShare& s : hierarchy.shares[size_t(level)][g]) {
         const Light& l = lights[s.light];
         const double v = visibleFromX(l) ? 1.0 : 0.0;
         shareSum.visible += s.share * v, shareSum.total += s.share;
@@ -208,7 +229,7 @@ ExpectedRatios expectedRatios(const GpuHierarchy& gpu, const std::vector<Light>&
         reachableBlended += a * blendedSum.total;
       }
       // Selectable: a positive importance (with the defensive share, any grid light blended here).
-      if (!(f > 0) && !(resolveShadowEstimator(settings.shadows, {}).estimator.defensive > 0 && blend > 0)) continue;
+      if (!(f > 0) && !(defensive && blend > 0)) continue;
       if (!(contributionSum.total > 0)) continue;
       byShare.visible += f * shareSum.ratio(), byShare.total += f;
       byContribution.visible += f * contributionSum.ratio(), byContribution.total += f;
@@ -291,6 +312,7 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
     renderer.render(makeCameraView(resolveCamera(scene, settings), 24, 24));
     const std::vector<Light> lights =
         fromGpuLights(renderer.inputLights().lights.download<gpu::GpuLight>(renderer.inputLights().count));
+    const HierarchyShares shares(renderer.hierarchy(), lights);
     const ImageRGBA position = renderer.readImage(Aov::Position), normal = renderer.readImage(Aov::Normal);
     std::vector<std::pair<double, size_t>> byGap;  // (smallest gap between groups' limits, pixel)
     std::vector<std::vector<double>> pixelLimits(position.pixels.size());
@@ -298,8 +320,7 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
       if (!(position.pixels[i].w > 0) || normal.pixels[i].y < 0.99f) continue;
       const glm::dvec3 x = glm::dvec3(glm::vec3(position.pixels[i]));
       const auto expectedFor = [&](const RenderSettings& s) {
-        return expectedRatios(renderer.hierarchy(), lights, x, glm::dvec3(0, 1, 0), -scene.origin.x, s,
-                              renderer.clampDistance());
+        return expectedRatios(shares, x, glm::dvec3(0, 1, 0), -scene.origin.x, s, renderer.clampDistance());
       };
       const double exact = expectedFor(settings).exact;
       if (exact < 0.3 || exact > 0.75) continue;
@@ -338,8 +359,9 @@ TEST_F(ShadowTargetsTest, HalfHiddenClusterGetsItsWeightedVisibility) {
     ASSERT_EQ(lights.size(), placed.size());
     const ImageRGBA position = renderer.readImage(Aov::Position);
     const glm::dvec3 x = glm::dvec3(glm::vec3(position.pixels[pixel]));
-    const ExpectedRatios expected = expectedRatios(renderer.hierarchy(), lights, x, glm::dvec3(0, 1, 0),
-                                                   -scene.origin.x, settings, renderer.clampDistance());
+    const ExpectedRatios expected =
+        expectedRatios(HierarchyShares(renderer.hierarchy(), lights), x, glm::dvec3(0, 1, 0), -scene.origin.x, settings,
+                       renderer.clampDistance());
     // The frames' ratios combined per pixel as the accumulation does: sum_f D_f r_f / sum_f D_f, D_f the
     // frame's mean weight (Aov::Ratio's blue is C D_f, C the LGH's irradiance; D_f = 1 unless weighed),
     // then averaged over the pixels; its standard error by the delta method over the frames (a frame's
@@ -475,12 +497,13 @@ TEST_F(ShadowTargetsTest, UnselectableGridLightsCompleteTheUnshadowedSum) {
     // The floor pixels with at least a tenth of the brightest one's light of which the selectable grid
     // lights' lights add at most nine tenths (52 of them; T's sum over them has a 0.4% standard error).
     const ImageRGBA position = renderer.readImage(Aov::Position);
+    const HierarchyShares shares(renderer.hierarchy(), lights);
     std::vector<ExpectedRatios> perPixel(position.pixels.size());
     double brightest = 0;
     for (size_t i = 0; i < position.pixels.size(); ++i) {
       if (!(position.pixels[i].w > 0)) continue;
-      perPixel[i] = expectedRatios(renderer.hierarchy(), lights, glm::dvec3(glm::vec3(position.pixels[i])),
-                                   glm::dvec3(0, 1, 0), 1e9, settings, renderer.clampDistance());
+      perPixel[i] = expectedRatios(shares, glm::dvec3(glm::vec3(position.pixels[i])), glm::dvec3(0, 1, 0), 1e9,
+                                   settings, renderer.clampDistance());
       brightest = std::max(brightest, perPixel[i].reachableBlendedTotal);
     }
     std::vector<size_t> pixels;
