@@ -9,14 +9,20 @@
 
 namespace lgh {
 
-bool isChoice(const char* choices, const std::string& value) {
-  const std::string list = choices;
-  for (size_t begin = 0; begin <= list.size();) {
-    const size_t end = std::min(list.find('|', begin), list.size());
-    if (list.compare(begin, end - begin, value) == 0 && !value.empty()) return true;
+std::vector<std::string> choiceList(const char* choices) {
+  std::vector<std::string> list;
+  const std::string text = choices;
+  for (size_t begin = 0; begin <= text.size();) {
+    const size_t end = std::min(text.find('|', begin), text.size());
+    list.push_back(text.substr(begin, end - begin));
     begin = end + 1;
   }
-  return false;
+  return list;
+}
+
+bool isChoice(const char* choices, const std::string& value) {
+  const std::vector<std::string> list = choiceList(choices);
+  return !value.empty() && std::find(list.begin(), list.end(), value) != list.end();
 }
 
 void setSetting(RenderSettings& settings, const std::string& name, const std::string& value) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <string>
+#include <vector>
 
 #include "shared/lgh_types.h"
 #include "shared/light_pass_types.h"
@@ -259,7 +260,8 @@ void visitSettings(Settings& s, Visitor&& visit) {
 void setSetting(RenderSettings& settings, const std::string& name, const std::string& value);
 // "NAME=VALUE" form of setSetting.
 void applySetting(RenderSettings& settings, const std::string& assignment);
-// Whether `value` is one of SettingInfo::choices ("a|b|c").
+// SettingInfo::choices ("a|b|c") as a list, and whether `value` is one of them.
+std::vector<std::string> choiceList(const char* choices);
 bool isChoice(const char* choices, const std::string& value);
 
 }  // namespace lgh

@@ -36,19 +36,15 @@ bool cameraCombo(const char* label, std::string& value, const Scene& scene) {
   return changed;
 }
 
-// A combo over SettingInfo::choices ("a|b|c").
-bool choiceCombo(const char* label, std::string& value, const std::string& choices) {
+// A combo over SettingInfo::choices.
+bool choiceCombo(const char* label, std::string& value, const char* choices) {
   bool changed = false;
   if (ImGui::BeginCombo(label, value.c_str())) {
-    for (size_t begin = 0; begin < choices.size();) {
-      const size_t end = std::min(choices.find('|', begin), choices.size());
-      const std::string choice = choices.substr(begin, end - begin);
+    for (const std::string& choice : choiceList(choices))
       if (ImGui::Selectable(choice.c_str(), value == choice)) {
         value = choice;
         changed = true;
       }
-      begin = end + 1;
-    }
     ImGui::EndCombo();
   }
   return changed;
