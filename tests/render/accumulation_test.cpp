@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "exact_irradiance.h"
 #include "gl_test_env.h"
 #include "render/image_compare.h"
-#include "render/passes/brute_force_pass.h"
 #include "render/renderer.h"
 #include "render/scene/scene_gpu.h"
 
@@ -38,20 +38,9 @@ class AccumulationTest : public GLTest {
     return n;
   }
 
-  // The exact shadowed irradiance at the renderer's surfaces: every input light, one shadow ray each.
-  ImageRGBA exactShadowed(const Renderer& renderer, const SceneGpu& gpu) const {
-    BruteForcePass bruteForce;
-    gl::Texture2D exact(settings.image.width, settings.image.height, GL_RGBA32F);
-    bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, &gpu},
-                       renderer.clampDistance(), exact);
-    return fromGLRows(settings.image.width, settings.image.height, exact.readRGBA());
-  }
   // The relative RMSE of the last frame's shadowed indirect irradiance (irradiance x visibility).
   static double shadowedError(const Renderer& renderer, const ImageRGBA& exact) {
-    ImageRGBA shadowed = renderer.readImage(Aov::Irradiance);
-    const ImageRGBA ratio = renderer.readImage(Aov::Visibility);
-    for (size_t i = 0; i < shadowed.pixels.size(); ++i) shadowed.pixels[i] *= ratio.pixels[i].r;
-    return relativeRmse(shadowed, exact);
+    return relativeRmse(shadowedIrradiance(renderer), exact);
   }
 
   Scene scene;
@@ -125,7 +114,7 @@ TEST_F(AccumulationTest, StillFramesLowerTheShadowedErrorAsIndependentFrames) {
   settings.shadows.samples = 1;
   Renderer renderer(gpu, settings);
   renderer.render(view());
-  const ImageRGBA exact = exactShadowed(renderer, gpu);
+  const ImageRGBA exact = exactIrradiance(renderer, &gpu);
 
   auto errorAfter = [&](int filterPasses, int frames) {
     settings.filter.passes = filterPasses;
@@ -164,7 +153,7 @@ TEST_F(AccumulationTest, CorrectedIrradianceConvergesBeyondTheLghAndFewSamplesKe
   settings.filter.passes = 0;
   Renderer renderer(gpu, settings);
   renderer.render(view());
-  const ImageRGBA exact = exactShadowed(renderer, gpu);
+  const ImageRGBA exact = exactIrradiance(renderer, &gpu);
 
   auto errorAfter = [&](int samples, bool correct, float lghError, int frames) {
     settings.shadows.samples = samples;
@@ -207,7 +196,7 @@ TEST_F(AccumulationTest, CorrectionOfInterleavedFramesDividesSumsNotPixels) {
   settings.lightPass.alpha = 0.5f;
   Renderer renderer(gpu, settings);
   renderer.render(view());
-  const ImageRGBA exact = exactShadowed(renderer, gpu);
+  const ImageRGBA exact = exactIrradiance(renderer, &gpu);
   for (int n : {1, 4}) {
     for (int frames : {1, 16}) {
       double error[2];

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "exact_irradiance.h"
 #include "gl_test_env.h"
 #include "lgh/evaluate.h"
 #include "render/image_compare.h"
-#include "render/passes/brute_force_pass.h"
 #include "render/renderer.h"
 #include "render/scene/scene_gpu.h"
 #include "shared/lgh_types.h"
@@ -45,16 +45,6 @@ Frame renderIrradiance(Renderer& renderer, const Scene& scene) {
   EXPECT_EQ(f.stats.nonFinitePixels, 0u);
   f.irradiance = renderer.readImage(Aov::Irradiance);
   return f;
-}
-
-// The exact unshadowed sum over the renderer's input lights, on its G-buffer (compute shader).
-ImageRGBA exactIrradiance(const Renderer& renderer) {
-  static BruteForcePass bruteForce;
-  const RenderSettings& s = renderer.settings();
-  gl::Texture2D out(s.image.width, s.image.height, GL_RGBA32F);
-  bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count},
-                     renderer.clampDistance(), out);
-  return fromGLRows(s.image.width, s.image.height, out.readRGBA());
 }
 
 class LightPassTest : public GLTest {};

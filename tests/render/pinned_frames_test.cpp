@@ -11,9 +11,9 @@
 #include <fstream>
 #include <string>
 
+#include "exact_irradiance.h"
 #include "gl_test_env.h"
 #include "render/image_compare.h"
-#include "render/passes/brute_force_pass.h"
 #include "render/renderer.h"
 #include "render/scene/scene_gpu.h"
 
@@ -79,15 +79,8 @@ class PinnedFramesTest : public GLTest {
   }
 
   // The relative RMSE of the last frame's shadowed indirect irradiance against the exact one.
-  double referenceError(const Renderer& renderer, const SceneGpu& gpu) const {
-    BruteForcePass bruteForce;
-    gl::Texture2D exact(settings.image.width, settings.image.height, GL_RGBA32F);
-    bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, &gpu},
-                       renderer.clampDistance(), exact);
-    ImageRGBA shadowed = renderer.readImage(Aov::Irradiance);
-    const ImageRGBA ratio = renderer.readImage(Aov::Visibility);
-    for (size_t i = 0; i < shadowed.pixels.size(); ++i) shadowed.pixels[i] *= ratio.pixels[i].r;
-    return relativeRmse(shadowed, fromGLRows(settings.image.width, settings.image.height, exact.readRGBA()));
+  static double referenceError(const Renderer& renderer, const SceneGpu& gpu) {
+    return relativeRmse(shadowedIrradiance(renderer), exactIrradiance(renderer, &gpu));
   }
 
   // Renders `frames` frames and checks the final image of each against its pinned copy.

@@ -8,11 +8,11 @@
 #include <map>
 #include <numeric>
 
+#include "exact_irradiance.h"
 #include "gl_test_env.h"
 #include "gltf_writer.h"
 #include "lgh/shading.h"
 #include "render/image_compare.h"
-#include "render/passes/brute_force_pass.h"
 #include "render/renderer.h"
 #include "render/scene/scene_gpu.h"
 #include "shared/light_pass_types.h"
@@ -210,11 +210,7 @@ TEST_F(ShadowTest, ImportanceSelectionBeatsUniform) {
   const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
   renderer.render(view);
 
-  static BruteForcePass bruteForce;
-  gl::Texture2D exactTexture(settings.image.width, settings.image.height, GL_RGBA32F);
-  bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, &gpu},
-                     renderer.clampDistance(), exactTexture);
-  const ImageRGBA exact = fromGLRows(settings.image.width, settings.image.height, exactTexture.readRGBA());
+  const ImageRGBA exact = exactIrradiance(renderer, &gpu);
 
   auto shadowedError = [&](bool uniform, int k, int filterPasses) {
     settings.shadows.estimator = uniform ? "uniform" : "converging";
@@ -222,10 +218,7 @@ TEST_F(ShadowTest, ImportanceSelectionBeatsUniform) {
     settings.filter.passes = filterPasses;
     renderer.setSettings(settings);
     renderer.render(view);
-    ImageRGBA shadowed = renderer.readImage(Aov::Irradiance);
-    const ImageRGBA ratio = renderer.readImage(Aov::Visibility);
-    for (size_t i = 0; i < shadowed.pixels.size(); ++i) shadowed.pixels[i] *= ratio.pixels[i].r;
-    return relativeRmse(shadowed, exact);
+    return relativeRmse(shadowedIrradiance(renderer), exact);
   };
   std::map<std::string, double> e;
   for (int passes : {0, 5}) {
