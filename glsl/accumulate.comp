@@ -5,29 +5,29 @@
 // values to the history's sums:
 //   irradiance sum  rgb: sum of E_f (unresolved: with n x n interleaving the tile's n^2-scaled value)
 //                   a:   N, frames in the history
-//   ratio sum       r: sum of T_f r_f, g: sum of T_f, b: sum of var(T_f), a: sum of lum(E_f)
+//   ratio sum       r: sum of T_f r_f, g: sum of T_f, b: sum of var(T_f), a: unused
 //                   (T_f = lum(E_f) D_f: the frame's ratio weight, what its shadow samples estimate the
-//                   input lights add, D_f their mean weight; var(T_f) its variance, the frames independent;
-//                   lum(E_f) unweighted)
+//                   input lights add, D_f their mean weight; var(T_f) its variance, the frames independent)
 // Raw, not filtered, values are summed so that the sums converge to the exact estimate instead of to
 // a filtered one. Outputs, in place: the accumulated irradiance sum / N (with interleaving only once
 // N >= n^2, when the rotated dealing has given the pixel every light; before that the resolved
-// irradiance of this frame stays), and the accumulated ratio sum(T r) / sum(T) (a ratio estimator,
-// weighted as the a-trous filter weighs its taps) with the weight sum(T) / N in blue, so that over the
-// accumulated irradiance sum(lum E) / N it gives the mean weight sum(T) / sum(lum E), that weight's
-// variance sum(var T) / N^2 in green, and N in alpha for the filter.
+// irradiance of this frame stays), the accumulated ratio sum(T r) / sum(T) (a ratio estimator,
+// weighted as the a-trous filter weighs its taps) with the weight sum(T) / N in blue, that weight's
+// variance sum(var T) / N^2 in green and N in alpha for the filter, and the sampled irradiance
+// lum(sum E / N), the mean of the irradiances the frames' T were drawn against (unresolved: with
+// interleaving the tiles the pixel has seen, which before N >= n^2 are not all of them), so that the
+// filter's mean weight sum(T) / sum(lum E) compares the same lights' sums.
 // With N = 1 the outputs are this frame's values bit for bit.
 // Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
-// irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, but
-// over a window that shrinks with N. The dealing rotates by one tile per frame, so N consecutive
-// frames give a pixel N consecutive tile classes, and the neighbour dy rows away sees them shifted by
-// n dy: for N < n the n x n window counts every class N times; from N >= n on a vertical window of n
-// rows covers every class (exactly floor(N / n) or one more times), with n times less blur.
+// irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, over
+// the interleaving window for N frames (shared/interleave_window.glsl: n x n for N < n, a column of n
+// rows from N >= n on).
 #include "shared/bindings.h"
 #include "shared/color.glsl"
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
+#include "shared/interleave_window.glsl"
 #include "shared/accumulation_types.h"
 
 layout(binding = LGH_TEXTURE_ACCUM_RAW_IRRADIANCE) uniform sampler2D rawIrradiance;  // tiled layout when n > 1
@@ -41,6 +41,7 @@ layout(rgba32f, binding = LGH_IMAGE_ACCUM_IRRADIANCE_SUM) uniform writeonly imag
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_RATIO_SUM) uniform writeonly image2D ratioSumOut;
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_POSITION) uniform writeonly image2D positionOut;
 layout(rgba16f, binding = LGH_IMAGE_ACCUM_NORMAL) uniform writeonly image2D normalOut;
+layout(r32f, binding = LGH_IMAGE_ACCUM_SAMPLED_IRRADIANCE) uniform writeonly image2D sampledIrradiance;  // C out
 
 layout(std140, binding = LGH_UBO_PASS) uniform Accumulation { AccumulationUniforms accum; };
 
@@ -66,29 +67,19 @@ ivec2 historyPixel(Surface s, ivec2 size) {
 
 // Stage 1: the irradiance of a pixel whose sum lacks some tiles, from the window's new sums (bound as
 // historyIrradiance).
-void resolveIncomplete(ivec2 pixel, ivec2 size) {
+void resolveIncomplete(ivec2 pixel) {
   Surface s = loadSurface(pixel);
   float frames = texelFetch(historyIrradiance, pixel, 0).a;
   uint n = accum.tilesPerAxis;
   if (!s.valid || frames < 1.5 || frames >= float(n * n)) return;
-  float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30);
-  int half_ = int(n / 2u);
-  bool even = (n & 1u) == 0u;
-  int halfX = frames >= float(n) ? 0 : half_;  // from n frames on: one column of n rows
+  ivec2 halfWidths = interleaveHalfWidths(n, frames);
   vec3 sum = vec3(0.0);
   float weightSum = 0.0;
-  for (int dy = -half_; dy <= half_; ++dy) {
-    for (int dx = -halfX; dx <= halfX; ++dx) {
-      ivec2 q = pixel + ivec2(dx, dy);
-      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-      vec4 qSum = texelFetch(historyIrradiance, q, 0);
-      vec4 qPosition = texelFetch(gPosition, q, 0);
-      if (qPosition.w == 0.0 || qSum.a == 0.0) continue;
-      float window = (even && halfX > 0 && abs(dx) == half_ ? 0.5 : 1.0) * (even && abs(dy) == half_ ? 0.5 : 1.0);
-      float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * accum.planeSigma);
-      float w =
-          window * pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), accum.normalPower) *
-          exp(-0.5 * plane * plane);
+  for (int dy = -halfWidths.y; dy <= halfWidths.y; ++dy) {
+    for (int dx = -halfWidths.x; dx <= halfWidths.x; ++dx) {
+      float w = interleaveTapWeight(s, pixel, ivec2(dx, dy), n, halfWidths, accum.normalPower, accum.planeSigma);
+      vec4 qSum = w > 0.0 ? texelFetch(historyIrradiance, pixel + ivec2(dx, dy), 0) : vec4(0.0);
+      if (qSum.a == 0.0) continue;
       sum += w * qSum.rgb / qSum.a;
       weightSum += w;
     }
@@ -102,7 +93,7 @@ void main() {
   ivec2 size = ivec2(frame.resolution.xy);
   if (any(greaterThanEqual(pixel, size))) return;
   if (accum.stage == kAccumulateResolveIncomplete) {
-    resolveIncomplete(pixel, size);
+    resolveIncomplete(pixel);
     return;
   }
   Surface s = loadSurface(pixel);
@@ -135,7 +126,7 @@ void main() {
   float r = accum.shadowed != 0u ? rawRatio.r : 1.0, weight = accum.shadowed != 0u ? max(rawRatio.b, 0.0) : l;
   float variance = accum.shadowed != 0u ? max(rawRatio.g, 0.0) : 0.0;
   irradianceSum += vec4(e, 1.0);
-  ratioSum += vec4(weight * r, weight, variance, l);
+  ratioSum += vec4(weight * r, weight, variance, 0.0);
   imageStore(irradianceSumOut, pixel, irradianceSum);
   imageStore(ratioSumOut, pixel, ratioSum);
   float frames = irradianceSum.a;
@@ -148,5 +139,6 @@ void main() {
     float accumulated = ratioSum.g > 0.0 ? ratioSum.r / ratioSum.g : rawRatio.r;
     imageStore(ratio, pixel,
                vec4(clamp(accumulated, 0.0, 1.0), ratioSum.b / (frames * frames), ratioSum.g / frames, frames));
+    imageStore(sampledIrradiance, pixel, vec4(luminance(irradianceSum.rgb / frames)));
   }
 }

@@ -1,13 +1,14 @@
 #version 450 core
 // Puts the n x n tiles of the interleaved light pass back together and removes the interleaving
-// pattern: every pixel averages an n x n window of its neighbours (a box of width n with half-weight
-// ends, n + 1 taps per axis, so each tile is counted exactly once and the window is symmetric),
-// weighted by how much each neighbour's surface looks like its own. Each tile's value was scaled by
-// n^2 in the light pass, so on a smooth surface the average is the sum over all tiles: all lights.
+// pattern: every pixel averages its neighbours over the interleaving window (shared/interleave_window.glsl:
+// n x n, each tile counted once), weighted by how much each neighbour's surface looks like its own. Each
+// tile's value was scaled by n^2 in the light pass, so on a smooth surface the average is the sum over all
+// tiles: all lights.
 #include "shared/bindings.h"
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
+#include "shared/interleave_window.glsl"
 
 layout(binding = LGH_TEXTURE_TILED_IRRADIANCE) uniform sampler2D tiledIrradiance;          // rgb irradiance x n^2, a shaded fragments
 layout(binding = LGH_TEXTURE_TILED_FRAGMENT_COUNTS) uniform usampler2D tiledFragmentCounts;     // when countFragments != 0
@@ -36,23 +37,13 @@ void main() {
     imageStore(irradianceOut, pixel, vec4(s.valid ? texelFetch(tiledIrradiance, own, 0).rgb : vec3(0.0), shadedFragments));
     return;
   }
-  // A neighbour's distance from this pixel's tangent plane, in units of the pixel footprint here.
-  float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30);
-  int half_ = int(tilesPerAxis / 2u);
-  bool even = (tilesPerAxis & 1u) == 0u;
+  ivec2 halfWidths = interleaveHalfWidths(tilesPerAxis, 1.0);
   vec3 sum = vec3(0.0);
   float weightSum = 0.0;
-  for (int dy = -half_; dy <= half_; ++dy) {
-    for (int dx = -half_; dx <= half_; ++dx) {
-      ivec2 q = pixel + ivec2(dx, dy);
-      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-      vec4 qPosition = texelFetch(gPosition, q, 0);
-      if (qPosition.w == 0.0) continue;
-      float window = (even && abs(dx) == half_ ? 0.5 : 1.0) * (even && abs(dy) == half_ ? 0.5 : 1.0);
-      vec3 qNormal = texelFetch(gNormal, q, 0).xyz;
-      float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
-      float w = window * pow(max(0.0, dot(s.normal, qNormal)), normalPower) * exp(-0.5 * plane * plane);
-      sum += w * texelFetch(tiledIrradiance, tiledCoord(q), 0).rgb;
+  for (int dy = -halfWidths.y; dy <= halfWidths.y; ++dy) {
+    for (int dx = -halfWidths.x; dx <= halfWidths.x; ++dx) {
+      float w = interleaveTapWeight(s, pixel, ivec2(dx, dy), tilesPerAxis, halfWidths, normalPower, planeSigma);
+      if (w > 0.0) sum += w * texelFetch(tiledIrradiance, tiledCoord(pixel + ivec2(dx, dy)), 0).rgb;
       weightSum += w;
     }
   }

@@ -17,11 +17,15 @@
 //   T = F' mean(w) + U estimates the whole unshadowed sum.
 // Writes the raw visibility ratio r = sum w V / sum w (red), the variance of T (green) and the ratio's
 // weight T (blue): the samples' estimate of what the input lights add here, on the scale of
-// the light pass's irradiance, by which the filter and the accumulation weigh the ratio; their sums of T
-// over sums of the irradiance C estimate D, what the input lights add over what the LGH's lights add, by
+// the light pass's irradiance, by which the filter and the accumulation weigh the ratio; and, as a second
+// image, the luminance C of the light pass's irradiance the samples were drawn against (with n x n
+// interleaving the pixel's own tile's, n^2-scaled and unresolved: its lights are the ones T estimates).
+// Sums of T over sums of C estimate D, what the input lights add over what the LGH's lights add, by
 // which the irradiance is corrected as far as T's variance allows (docs/design.md §5, "Weighing the
-// samples" and "Correcting the irradiance"). Only sums are divided: with interleaving one tile's C can be
-// all but 0 where T is not.
+// samples" and "Correcting the irradiance"). Only sums are divided: one tile's C can be all but 0 where
+// T is not. Comparing a tile's T with the resolved irradiance instead would make D vary from tile to
+// tile by what the tile's lights add, an error that more samples do not shrink and T's variance does
+// not show (issue 28: with it, k = 16 was worse than k = 4 at 4 x 4).
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/bindings.h"
 #include "shared/bvh_traverse.glsl"
@@ -48,6 +52,7 @@ layout(std430, binding = LGH_BINDING_PASS4) readonly buffer Targets { uint clust
 layout(std430, binding = LGH_BINDING_PASS5) readonly buffer ShadowUnselectable { float shadowUnselectable[]; };
 layout(rgba32f,
        binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D ratioOut;  // r: visibility ratio, g: T's variance, b: T
+layout(r32f, binding = LGH_IMAGE_SHADOW_SAMPLED_IRRADIANCE) uniform writeonly image2D sampledIrradianceOut;  // C
 
 layout(std140, binding = LGH_UBO_PASS) uniform ShadowRays { ShadowRayUniforms rays; };
 
@@ -174,7 +179,7 @@ void main() {
   }
   // No selected light (nothing lights this pixel through the LGH): visibility 1 multiplies zero anyway.
   float ratio = weights > 0.0 ? visible / weights : 1.0;
-  // b: the estimate's own weight T = F' mean(w) = C D (C: the LGH's irradiance here), by which the filter
+  // b: the estimate's own weight T = F' mean(w) = C D (C: the light pass's irradiance here, in its layout), by which the filter
   // and the accumulation weigh this pixel's ratio (a ratio of sums over pixels and frames converges where
   // a mean of per-pixel ratios would keep each one's bias), and whose sums over sums of C may correct the
   // LGH's irradiance. With the finest level skipped the samples cover only part of C: D is then the plain
@@ -195,4 +200,5 @@ void main() {
     variance = (rays.sampleSpread * rays.sampleSpread * lgh * lgh + deviations) / (k * k);
   }
   imageStore(ratioOut, pixel, vec4(ratio, variance, estimate, 1.0));
+  imageStore(sampledIrradianceOut, pixel, vec4(s.valid ? lgh : 0.0));
 }

@@ -115,6 +115,8 @@ void Renderer::allocateTargets() {
   fragmentCounts_.clearUint(0);
   rawRatio_ = gl::Texture2D(w, h, GL_RGBA32F);
   rawRatio_.clear(glm::vec4(1.0f));
+  sampledIrradiance_ = gl::Texture2D(w, h, GL_R32F);
+  sampledIrradiance_.clear(glm::vec4(0.0f));
   visibility_ = gl::Texture2D(w, h, GL_RGBA32F);
   visibility_.clear(glm::vec4(1.0f));
   indirect_ = gl::Texture2D(w, h, GL_RGBA32F);
@@ -168,6 +170,7 @@ ShadowFilterOptions Renderer::shadowFilterOptions() const {
   o.correction = {shadowEstimator_.correctIrradiance, shadowEstimator_.correctionError};
   // Less filtering where the ratio holds more frames.
   o.sigmaFade = accumulating() ? settings_.accumulation.filterFade : 0.0f;
+  o.tilesPerAxis = interleaved() ? settings_.lightPass.interleave : 1;
   return o;
 }
 
@@ -236,20 +239,20 @@ FrameStats Renderer::render(const CameraView& view) {
       timed(passes::kShadowRays, [&] {
         shadowRayPass_.execute({scene_, gbuffer_, inputLights_.lights, hierarchy_, shadowTargets_, shadowSlots_,
                                 target.layout, target.irradiance},
-                               shadowRayOptions(options), rawRatio_);
+                               shadowRayOptions(options), {rawRatio_, sampledIrradiance_});
       });
     // Temporal accumulation: this frame's raw irradiance and ratio added to the history reprojected from
     // the last frame; the accumulated estimates replace them for the filter and the composite.
     if (accumulating())
       timed(passes::kAccumulation, [&] {
         accumulationPass_.execute({gbuffer_, view, target.irradiance, target.layout, shadowed()},
-                                  settings_.accumulation, {irradiance_, rawRatio_});
+                                  settings_.accumulation, {irradiance_, rawRatio_, sampledIrradiance_});
       });
-    // A-trous filter over the ratio, as a ratio estimator with the unshadowed irradiance (less of it
-    // where the ratio holds more frames).
+    // A-trous filter over the ratio, as a ratio estimator with the ratio's weights (less of it where the
+    // ratio holds more frames), and the mean weight that corrects the irradiance.
     if (shadowed())
       timed(passes::kShadowFilter, [&] {
-        shadowFilterPass_.execute({gbuffer_, rawRatio_, irradiance_}, shadowFilterOptions(), visibility_);
+        shadowFilterPass_.execute({gbuffer_, rawRatio_, sampledIrradiance_}, shadowFilterOptions(), visibility_);
       });
     stats.lights = lightStats(draws);
   }

@@ -40,7 +40,7 @@
 #define LGH_TEXTURE_TILED_FRAGMENT_COUNTS 5  // interleave resolve
 #define LGH_TEXTURE_SHADOW_IRRADIANCE 4      // shadow rays: the light pass's irradiance, in its layout
 #define LGH_TEXTURE_FILTER_SIGNAL 4          // a-trous: the signal being filtered
-#define LGH_TEXTURE_FILTER_SECOND 5          // a-trous: unshadowed irradiance, or the raw ratio
+#define LGH_TEXTURE_FILTER_SECOND 5          // a-trous: the sampled irradiance, or the raw ratio
 #define LGH_TEXTURE_COMPOSITE_DIRECT 4
 #define LGH_TEXTURE_COMPOSITE_INDIRECT 5
 #define LGH_TEXTURE_COMPOSITE_VISIBILITY 6
@@ -52,17 +52,18 @@
 #define LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL 8
 
 // Image units, per pass.
-#define LGH_IMAGE_TILED_POSITION 0            // interleave split
-#define LGH_IMAGE_TILED_NORMAL 1              // interleave split
-#define LGH_IMAGE_RESOLVED_IRRADIANCE 0       // interleave resolve
-#define LGH_IMAGE_RESOLVED_FRAGMENT_COUNTS 1  // interleave resolve
-#define LGH_IMAGE_FRAGMENT_COUNTS 0           // light pass (overdraw)
-#define LGH_IMAGE_PYRAMID_FINER 0             // depth pyramid: the level read
-#define LGH_IMAGE_PYRAMID_COARSER 1           // depth pyramid: the level written
-#define LGH_IMAGE_DIRECT 0                    // direct light
-#define LGH_IMAGE_BRUTE_FORCE_IRRADIANCE 0    // compute brute force
-#define LGH_IMAGE_SHADOW_RATIO 0              // shadow rays
-#define LGH_IMAGE_FILTER_OUT 0                // a-trous
+#define LGH_IMAGE_TILED_POSITION 0             // interleave split
+#define LGH_IMAGE_TILED_NORMAL 1               // interleave split
+#define LGH_IMAGE_RESOLVED_IRRADIANCE 0        // interleave resolve
+#define LGH_IMAGE_RESOLVED_FRAGMENT_COUNTS 1   // interleave resolve
+#define LGH_IMAGE_FRAGMENT_COUNTS 0            // light pass (overdraw)
+#define LGH_IMAGE_PYRAMID_FINER 0              // depth pyramid: the level read
+#define LGH_IMAGE_PYRAMID_COARSER 1            // depth pyramid: the level written
+#define LGH_IMAGE_DIRECT 0                     // direct light
+#define LGH_IMAGE_BRUTE_FORCE_IRRADIANCE 0     // compute brute force
+#define LGH_IMAGE_SHADOW_RATIO 0               // shadow rays
+#define LGH_IMAGE_SHADOW_SAMPLED_IRRADIANCE 1  // shadow rays: the irradiance T is compared with
+#define LGH_IMAGE_FILTER_OUT 0                 // a-trous
 #define LGH_IMAGE_COMPOSITE_FINAL 0
 #define LGH_IMAGE_COMPOSITE_INDIRECT 1
 #define LGH_IMAGE_ACCUM_IRRADIANCE 0      // accumulation: in this frame's irradiance, out the accumulated
@@ -71,6 +72,7 @@
 #define LGH_IMAGE_ACCUM_RATIO_SUM 3
 #define LGH_IMAGE_ACCUM_POSITION 4
 #define LGH_IMAGE_ACCUM_NORMAL 5
+#define LGH_IMAGE_ACCUM_SAMPLED_IRRADIANCE 6  // accumulation: this frame's in, the accumulated out
 
 // Uniform blocks.
 #define LGH_UBO_FRAME 0

@@ -6,9 +6,10 @@
 
 GPU_NAMESPACE_BEGIN
 
-GPU_CONST uint kFilterPrepare = 0u;  // stage 0: (raw ratio, irradiance) -> (S, U D, U, var(U D))
+GPU_CONST uint kFilterPrepare = 0u;  // stage 0: (raw ratio, sampled irradiance) -> (S, U D, U, var(U D))
 GPU_CONST uint kFilterPass = 1u;     // stage 1: one a-trous pass with holes of stepSize
 GPU_CONST uint kFilterFinish = 2u;   // stage 2: -> visibility factor
+GPU_CONST uint kFilterResolve = 3u;  // with interleaving, after stage 0: the interleaving window's sums
 
 // Scalars in groups of four (see gpu_prelude.h).
 GPU_STRUCT(ShadowFilterUniforms) {
@@ -23,8 +24,9 @@ GPU_STRUCT(ShadowFilterUniforms) {
                       // raw ratios, with k = 1 only 0 or 1, which would stop every tap)
   float sigmaFade;    // ratio sigma x N^-sigmaFade for a ratio accumulated over N frames
 
-  float lghError;  // f: the LGH irradiance's expected relative error (the prior spread of D)
-  uint pad0, pad1, pad2;
+  float lghError;     // f: the LGH irradiance's expected relative error (the prior spread of D)
+  uint tilesPerAxis;  // n: the interleaving the estimate was made with (1: none)
+  uint pad0, pad1;
 };
 GPU_CHECK_OFFSET(ShadowFilterUniforms, normalPower, 16);
 GPU_CHECK_OFFSET(ShadowFilterUniforms, lghError, 32);

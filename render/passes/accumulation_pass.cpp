@@ -59,6 +59,7 @@ void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationS
   previous.normal.bindTexture(LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL);
   io.irradiance.bindImage(LGH_IMAGE_ACCUM_IRRADIANCE, GL_READ_WRITE);
   io.ratio.bindImage(LGH_IMAGE_ACCUM_RATIO, GL_READ_WRITE);
+  io.sampledIrradiance.bindImage(LGH_IMAGE_ACCUM_SAMPLED_IRRADIANCE, GL_WRITE_ONLY);
   next.irradianceSum.bindImage(LGH_IMAGE_ACCUM_IRRADIANCE_SUM, GL_WRITE_ONLY);
   next.ratioSum.bindImage(LGH_IMAGE_ACCUM_RATIO_SUM, GL_WRITE_ONLY);
   next.position.bindImage(LGH_IMAGE_ACCUM_POSITION, GL_WRITE_ONLY);

@@ -4,9 +4,11 @@
 //   in:  AccumulationInputs: GBuffer (this frame's surfaces), this frame's camera, this frame's raw
 //        irradiance (the light pass's target: full resolution, or the n x n tiles' n^2-scaled values)
 //   in/out: AccumulationTargets: irradiance (resolved in, accumulated out), ratio (raw in, accumulated
-//        out, alpha: the pixel's history length N, which the shadow filter reads)
-//   history (kept here, ping-pong): sums of the raw irradiance and of the (shadowed, unshadowed)
-//        luminance, and the surfaces they belong to
+//        out, alpha: the pixel's history length N, which the shadow filter reads), sampled irradiance
+//        (this frame's in, the mean of the unresolved irradiances the frames' ratio weights T were drawn
+//        against out)
+//   history (kept here, ping-pong): sums of the raw irradiance, of the ratio's weighted values, weights
+//        and variances, and the surfaces they belong to
 // The history is reprojected through the G-buffer each frame and dropped where the surface differs;
 // restart() drops all of it (the lights or the estimate's settings changed).
 
@@ -37,6 +39,7 @@ struct AccumulationInputs {
 struct AccumulationTargets {
   gl::Texture2D& irradiance;
   gl::Texture2D& ratio;
+  gl::Texture2D& sampledIrradiance;  // R32F (written only when shadowed)
 };
 
 class AccumulationPass {

@@ -20,7 +20,7 @@ void ShadowFilterPass::execute(const ShadowFilterInputs& in, const ShadowFilterO
     ping_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
     pong_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
   }
-  // The dispatches: prepare, one pass per step 1, 2, ..., 2^(passes - 1), finish.
+  // The dispatches: prepare, resolve (interleaving), one pass per step 1, 2, ..., 2^(passes - 1), finish.
   const ShadowFilterSettings& filter = options.filter;
   gpu::ShadowFilterUniforms common{};
   common.passes = filter.passes;
@@ -30,6 +30,7 @@ void ShadowFilterPass::execute(const ShadowFilterInputs& in, const ShadowFilterO
   common.ratioSigma = std::max(filter.ratioSigma, 1e-6f);
   common.sigmaFade = options.sigmaFade;
   common.lghError = options.correction.lghError;
+  common.tilesPerAxis = unsigned(std::max(options.tilesPerAxis, 1));
   std::vector<gpu::ShadowFilterUniforms> dispatches;
   auto add = [&](unsigned stage, int step) {
     dispatches.push_back(common);
@@ -37,6 +38,11 @@ void ShadowFilterPass::execute(const ShadowFilterInputs& in, const ShadowFilterO
     dispatches.back().stepSize = step;
   };
   add(gpu::kFilterPrepare, 1);
+  if (common.tilesPerAxis > 1) {
+    add(gpu::kFilterResolve, 1);
+    dispatches.back().normalPower = options.resolve.normalPower;
+    dispatches.back().planeSigma = std::max(options.resolve.planeSigma, 1e-6f);
+  }
   for (int i = 0; i < filter.passes; ++i) add(gpu::kFilterPass, 1 << i);
   add(gpu::kFilterFinish, 1);
   uniforms_.upload(dispatches);
@@ -50,11 +56,11 @@ void ShadowFilterPass::execute(const ShadowFilterInputs& in, const ShadowFilterO
     program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   };
-  run(0, in.rawRatio, in.irradiance, ping_);
+  run(0, in.rawRatio, in.sampledIrradiance, ping_);
   gl::Texture2D* signal = &ping_;
   gl::Texture2D* out = &pong_;
-  for (int i = 0; i < filter.passes; ++i) {
-    run(1 + size_t(i), *signal, in.rawRatio, *out);
+  for (size_t i = 1; i + 1 < dispatches.size(); ++i) {  // resolve and a-trous passes
+    run(i, *signal, in.rawRatio, *out);
     std::swap(signal, out);
   }
   run(dispatches.size() - 1, *signal, in.rawRatio, visibility);

@@ -1,9 +1,10 @@
 #pragma once
 // The shadow filter (docs/design.md §6): an a-trous filter over the raw visibility ratio, applied as a
-// ratio estimator with the unshadowed irradiance (glsl/atrous.comp); a ratio accumulated over N frames
+// ratio estimator with the ratio's weights T (glsl/atrous.comp); a ratio accumulated over N frames
 // (N in the raw ratio's alpha) is filtered with its ratio sigma x N^-sigmaFade.
-//   in:  ShadowFilterInputs: the G-buffer, the raw ratio (ShadowRayPass, or accumulated), the unshadowed
-//        irradiance
+//   in:  ShadowFilterInputs: the G-buffer, the raw ratio and the sampled irradiance (ShadowRayPass, or
+//        accumulated)
+// With interleaving, the sums are first resolved over the interleaving window, as the irradiance is.
 //   out: visibility factor, RGBA32F: r the filtered ratio (times the filtered mean weight D, shrunk toward 1
 //        by its variance, when correcting the irradiance), g the filtered ratio, b the mean weight
 
@@ -11,14 +12,17 @@
 #include "render/gl/texture.h"
 #include "render/gl/uniform_blocks.h"
 #include "render/passes/gbuffer_pass.h"
+#include "render/passes/interleave_pass.h"
 #include "render/settings.h"
 
 namespace lgh {
 
 struct ShadowFilterInputs {
   const GBuffer& gbuffer;
-  const gl::Texture2D& rawRatio;    // r ratio, g T's variance, b T, a frames
-  const gl::Texture2D& irradiance;  // unshadowed, full resolution
+  const gl::Texture2D& rawRatio;  // r ratio, g T's variance, b T, a frames
+  // r: the luminance C of the (unshadowed) irradiance the samples' T were drawn against, which the filtered
+  // mean weight D = sum T / sum C compares them with (with interleaving the tiles', not the resolved one)
+  const gl::Texture2D& sampledIrradiance;
 };
 
 // How the filter's output scales the LGH's irradiance by the shadow samples' mean weight D: by
@@ -32,6 +36,10 @@ struct ShadowFilterOptions {
   ShadowFilterSettings filter;
   IrradianceCorrection correction;  // from the resolved ShadowEstimator
   float sigmaFade = 0.0f;           // accumulating: AccumulationSettings::filterFade; else 0
+  // n x n interleaving of the light pass the samples come from: their sums are first resolved over the
+  // window the irradiance was resolved with (1: none)
+  int tilesPerAxis = 1;
+  InterleaveFilter resolve;
 };
 
 class ShadowFilterPass {

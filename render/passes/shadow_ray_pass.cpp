@@ -12,7 +12,7 @@ namespace lgh {
 ShadowRayPass::ShadowRayPass()
     : program_(gl::Program::compute("shadow_rays.comp")), uniforms_(sizeof(gpu::ShadowRayUniforms)) {}
 
-void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& options, gl::Texture2D& rawRatio) {
+void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& options, const ShadowRayTargets& out) {
   const bool drawnTargets = in.targets.races > 0 && in.targets.targets;
   gpu::ShadowRayUniforms u{};
   u.samples = unsigned(in.slots.k);
@@ -46,7 +46,8 @@ void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& o
   (in.hierarchy.gridLights ? in.hierarchy.gridLights : in.inputLights)
       .bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
   (drawnTargets ? in.targets.targets : in.inputLights).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
-  rawRatio.bindImage(LGH_IMAGE_SHADOW_RATIO, GL_WRITE_ONLY);
+  out.rawRatio.bindImage(LGH_IMAGE_SHADOW_RATIO, GL_WRITE_ONLY);
+  out.sampledIrradiance.bindImage(LGH_IMAGE_SHADOW_SAMPLED_IRRADIANCE, GL_WRITE_ONLY);
   uniforms_.bind(0, LGH_UBO_PASS);
   program_.dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

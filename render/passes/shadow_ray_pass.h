@@ -5,8 +5,10 @@
 // importance the light pass selected it by (glsl/shadow_rays.comp).
 //   in:  ShadowRayInputs: the scene's BVH, the G-buffer, the input lights S0 and the hierarchy, this
 //        frame's drawn targets, the shadow slots and the light pass's irradiance (both in its layout)
-//   out: raw visibility ratio, RGBA32F, full resolution: r the ratio sum w V / sum w, g the variance of
-//        T, b T (the samples' estimate of what the input lights add, the ratio's weight), a 1
+//   out: ShadowRayTargets, full resolution: the raw visibility ratio (RGBA32F: r the ratio sum w V / sum w,
+//        g the variance of T, b T, the samples' estimate of what the input lights add and the ratio's
+//        weight, a 1) and the sampled irradiance (R32F: the luminance C of the light pass's irradiance T
+//        is compared with; with interleaving the pixel's own tile's, unresolved)
 
 #include "render/gl/program.h"
 #include "render/gl/texture.h"
@@ -43,10 +45,15 @@ struct ShadowRayOptions {
   unsigned frameSeed = 0;
 };
 
+struct ShadowRayTargets {
+  gl::Texture2D& rawRatio;           // RGBA32F
+  gl::Texture2D& sampledIrradiance;  // R32F
+};
+
 class ShadowRayPass {
  public:
   ShadowRayPass();
-  void execute(const ShadowRayInputs& in, const ShadowRayOptions& options, gl::Texture2D& rawRatio);
+  void execute(const ShadowRayInputs& in, const ShadowRayOptions& options, const ShadowRayTargets& out);
 
  private:
   gl::Program program_;
