@@ -59,9 +59,9 @@ ResolvedShadowEstimator resolveShadowEstimator(const ShadowSettings& settings, c
                                    " one storage block holds (the corrected image may come out darker)");
   }
   // D compares the samples' sum with the LGH's irradiance: meaningless with the finest level skipped (the
-  // samples cover part of it), 1 with brute force. Uniform selection's T is the light pass's own irradiance,
-  // so its D is 1 at 1 x 1; interleaved, T is a tile's and C the resolved irradiance, and D is their ratio.
-  e.correctIrradiance = settings.correctIrradiance && !e.skipFinest && !limits.bruteForce;
+  // samples cover part of it), 1 with brute force, and 1 with uniform selection, whose T is the irradiance
+  // its samples are compared with (interleaved too: both are the tile's).
+  e.correctIrradiance = settings.correctIrradiance && !e.skipFinest && !limits.bruteForce && !e.uniformSelection;
   e.correctionError = settings.correctionError;
   e.correctionSampleSpread = settings.correctionSampleSpread;
   return resolved;

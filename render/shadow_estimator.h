@@ -10,7 +10,7 @@
 //               level not selected, no weights, no correction.
 //   uniform     the paper's baseline: every contributing light equally likely; rays aimed as in
 //               converging, but its estimate of the unshadowed sum (lights x mean weight) is too noisy to
-//               correct by: its T is the light pass's irradiance (D = 1 but for interleaving), nothing counted.
+//               correct by: its T is the light pass's irradiance (so D = 1: nothing corrected), nothing counted.
 // No GL here: tests/engine/shadow_estimator_test.cpp covers every mode and limit without a GPU.
 
 #include <cstddef>

@@ -76,7 +76,7 @@ TEST(ShadowEstimatorTest, UniformSelectsUniformlyAndCountsNothing) {
   EXPECT_EQ(e.drawnTargets, 8u);  // rays aimed as the converging estimator aims them
   EXPECT_TRUE(e.resampleTargets && e.weighTargets);
   EXPECT_FALSE(e.countUnselectable);  // its T is the LGH's irradiance: nothing to complete
-  EXPECT_TRUE(e.correctIrradiance);   // D = T / C with T the light pass's own irradiance: 1 but for interleaving
+  EXPECT_FALSE(e.correctIrradiance);  // D = T / C with T the light pass's own irradiance: 1, interleaved too
 }
 
 TEST(ShadowEstimatorTest, NoSamplesMeansNoSelectionInEveryMode) {
