@@ -9,9 +9,9 @@
 //                   (T_f = lum(E_f) D_f: the frame's ratio weight, what its shadow samples estimate the
 //                   input lights add, D_f their mean weight; var(T_f) its variance, the frames independent)
 // Raw, not filtered, values are summed so that the sums converge to the exact estimate instead of to
-// a filtered one. Outputs, in place: the accumulated irradiance sum / N (with interleaving only once
-// N >= n^2, when the rotated dealing has given the pixel every light; before that the resolved
-// irradiance of this frame stays), the accumulated ratio sum(T r) / sum(T) (a ratio estimator,
+// a filtered one. Outputs, in place: the accumulated irradiance sum / N (with interleaving once
+// N >= n^2, when the rotated dealing has given the pixel every light; before that stage 1 resolves the
+// incomplete sums), the accumulated ratio sum(T r) / sum(T) (a ratio estimator,
 // weighted as the a-trous filter weighs its taps) with the weight sum(T) / N in blue, that weight's
 // variance sum(var T) / N^2 in green and N in alpha for the filter, and the sampled irradiance
 // lum(sum E / N), the mean of the irradiances the frames' T were drawn against (unresolved: with

@@ -13,8 +13,9 @@
 // the LGH's irradiance, and as the samples, taps and frames make D certain the image converges to the
 // exact shadowed irradiance instead of the LGH's times the exact ratio. D's variance comes with the raw
 // ratio (green: var(U D), its samples' spread pooled with a prior, shadow_rays.comp; over N frames the
-// sum of theirs / N^2, accumulate.comp). The first pass averages independent pixels, so it filters that
-// variance with the squared tap weights (as Schied et al. 2017 do for every pass); later passes average
+// sum of theirs / N^2, accumulate.comp). The first averaging (the interleaving's resolve, else the first
+// pass) averages independent pixels, so it filters that variance with the squared tap weights (as Schied
+// et al. 2017 do for every pass); later passes average
 // overlapping neighbourhoods of those averages, whose noise is correlated, and their blur biases D where
 // it varies, so they claim no further certainty (measured: trusting their squared weights too made the
 // corrected image worse than the uncorrected one at alpha 0.5). The ratio's edge-stopping stays on
@@ -33,7 +34,7 @@
 //   stage 0: (raw ratio, sampled irradiance) -> (S, U D, U, var(U D))
 //   resolve: (interleaving) the same, summed over the interleaving window
 //   stage 1: one 5x5 B3-spline pass with holes of `stepSize` over (S, U D, U); var with squared weights
-//            in the first pass (step 1), kept in the others
+//            in the first pass (step 1) unless the resolve ran, kept in the others
 //   stage 2: (S, U D, U, var) -> visibility factor (r): S / (U D), times the shrunk correction with
 //            correctIrradiance; the ratio S / (U D) (g) and the mean weight U D / U (b); the raw ratio
 //            where U D is 0, mean weight 1 where U is 0
@@ -86,6 +87,10 @@ void main() {
   float frames = max(raw.a, 1.0);  // accumulated (1 for a single frame)
   ivec2 resolveWindow = interleaveHalfWidths(atrous.tilesPerAxis, frames);
   if (atrous.stage == kFilterResolve) {
+    // The window's taps, kept for the spread below: at most (n + 1)^2 = 81 (n <= 8, gpu::kMaxInterleave).
+    vec4 taps[81];
+    float tapWeights[81];
+    int tapCount = 0;
     vec3 sum = vec3(0.0);
     float weightSum = 0.0, varianceSum = 0.0;
     for (int dy = -resolveWindow.y; dy <= resolveWindow.y; ++dy) {
@@ -97,27 +102,25 @@ void main() {
         sum += w * v.rgb;
         varianceSum += w * w * v.a;
         weightSum += w;
+        taps[tapCount] = v;
+        tapWeights[tapCount++] = w;
       }
     }
-    // The centre tap has weight >= 1/4 > 0. The window's mean weight D = sum U D / sum U is a ratio
-    // estimator over pixels of different tiles: besides its samples' variance (the taps' var(U D)), it
-    // varies by what each tile's lights add here, which no number of samples shrinks (a tile holding a
+    // The pixel's own tap has weight 1, so weightSum > 0. The window's mean weight D = sum U D / sum U is a
+    // ratio estimator over pixels of different tiles: besides its samples' variance (the taps' var(U D)),
+    // it varies by what each tile's lights add here, which no number of samples shrinks (a tile holding a
     // light close to its pixel adds n^2 times it there). Its variance, on the scale of U D, is estimated
     // from the window's own spread as a ratio estimator's (Cochran 1977, 6.3):
     // sum w^2 (U D_q - D U_q)^2 / (sum w)^2. That spread holds the samples' noise too, but from a few taps
     // it can come out small by chance: the larger of it and the samples' own variance is taken, so that
-    // the correction is trusted as far as the tiles agree and their samples allow.
+    // the correction is trusted as far as the tiles agree and their samples allow. (Measured: scaling the
+    // spread by m / (m - 1), m the taps' effective count, and not trusting D at all below m = 2 made every
+    // interleaved k = 16 frame worse, docs/measurements.md.)
     float meanWeight = sum.b > 0.0 ? sum.g / sum.b : 1.0;
     float spread = 0.0;
-    for (int dy = -resolveWindow.y; dy <= resolveWindow.y; ++dy) {
-      for (int dx = -resolveWindow.x; dx <= resolveWindow.x; ++dx) {
-        float w = interleaveTapWeight(s, pixel, ivec2(dx, dy), atrous.tilesPerAxis, resolveWindow, atrous.normalPower,
-                                      atrous.planeSigma);
-        if (!(w > 0.0)) continue;
-        vec4 v = texelFetch(signalIn, pixel + ivec2(dx, dy), 0);
-        float residual = v.g - meanWeight * v.b;
-        spread += w * w * residual * residual;
-      }
+    for (int i = 0; i < tapCount; ++i) {
+      float residual = taps[i].g - meanWeight * taps[i].b;
+      spread += tapWeights[i] * tapWeights[i] * residual * residual;
     }
     imageStore(signalOut, pixel, vec4(sum / weightSum, max(varianceSum, spread) / (weightSum * weightSum)));
     return;

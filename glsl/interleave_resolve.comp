@@ -47,6 +47,6 @@ void main() {
       weightSum += w;
     }
   }
-  // The pixel's own sample has weight >= 1/4 > 0, so weightSum never vanishes on a valid pixel.
+  // The pixel's own sample has weight 1, so weightSum never vanishes on a valid pixel.
   imageStore(irradianceOut, pixel, vec4(sum / weightSum, shadedFragments));
 }

@@ -171,6 +171,7 @@ ShadowFilterOptions Renderer::shadowFilterOptions() const {
   // Less filtering where the ratio holds more frames.
   o.sigmaFade = accumulating() ? settings_.accumulation.filterFade : 0.0f;
   o.tilesPerAxis = interleaved() ? settings_.lightPass.interleave : 1;
+  o.resolve = kInterleaveResolve;
   return o;
 }
 
@@ -231,7 +232,7 @@ FrameStats Renderer::render(const CameraView& view) {
     // The tiles' irradiance back at full resolution, edge-aware.
     if (interleaved())
       timed(passes::kInterleaveResolve, [&] {
-        interleavePass_.resolve(gbuffer_, tiles_, InterleaveFilter{},
+        interleavePass_.resolve(gbuffer_, tiles_, kInterleaveResolve,
                                 {irradiance_, options.pass.overdraw ? &fragmentCounts_ : nullptr});
       });
     // Shadow rays to the picked lights: the raw visibility ratio.
@@ -245,7 +246,7 @@ FrameStats Renderer::render(const CameraView& view) {
     // the last frame; the accumulated estimates replace them for the filter and the composite.
     if (accumulating())
       timed(passes::kAccumulation, [&] {
-        accumulationPass_.execute({gbuffer_, view, target.irradiance, target.layout, shadowed()},
+        accumulationPass_.execute({gbuffer_, view, target.irradiance, target.layout, shadowed(), kInterleaveResolve},
                                   settings_.accumulation, {irradiance_, rawRatio_, sampledIrradiance_});
       });
     // A-trous filter over the ratio, as a ratio estimator with the ratio's weights (less of it where the

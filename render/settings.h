@@ -76,7 +76,7 @@ struct ShadowSettings {
 
 // The a-trous filter over the shadow ratio (ShadowFilterPass).
 struct ShadowFilterSettings {
-  int passes = 5;  // 0: the raw ratio, unfiltered
+  int passes = 5;  // 0: the raw ratio, unfiltered (with interleaving still resolved over the tiles)
   float normalPower = 64.0f;
   float planeSigma = 1.0f;   // tangent-plane distance in pixel footprints (x the step) at weight e^-1/2
   float ratioSigma = 0.25f;  // ratio difference at weight e^-1/2

@@ -45,7 +45,7 @@ void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationS
   sums.planeTolerance = kHistoryPlaneTolerance;
   sums.normalTolerance = kHistoryNormalTolerance;
   gpu::AccumulationUniforms resolve = sums;
-  const InterleaveFilter filter;
+  const InterleaveFilter& filter = in.resolve;
   resolve.stage = gpu::kAccumulateResolveIncomplete;
   resolve.normalPower = filter.normalPower;
   resolve.planeSigma = std::max(filter.planeSigma, 1e-6f);

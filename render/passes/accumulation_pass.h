@@ -29,10 +29,11 @@ inline constexpr float kHistoryNormalTolerance = 0.9f;
 
 struct AccumulationInputs {
   const GBuffer& gbuffer;
-  const CameraView& view;              // this frame's camera (the next frame reprojects through it)
-  const gl::Texture2D& rawIrradiance;  // in `layout`
-  TileLayout layout;                   // tiled when layout.tilesPerAxis > 1
-  bool shadowed = false;               // the ratio target holds this frame's raw ratio (else it is not read)
+  const CameraView& view;                         // this frame's camera (the next frame reprojects through it)
+  const gl::Texture2D& rawIrradiance;             // in `layout`
+  TileLayout layout;                              // tiled when layout.tilesPerAxis > 1
+  bool shadowed = false;                          // the ratio target holds this frame's raw ratio (else it is not read)
+  InterleaveFilter resolve = kInterleaveResolve;  // the weights of the resolve of incomplete sums
 };
 
 // Read and written in place.

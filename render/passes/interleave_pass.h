@@ -35,6 +35,11 @@ struct InterleaveFilter {
   float planeSigma = 2.0f;    // distance from the tangent plane, in pixel footprints, at weight e^-1/2
 };
 
+// The one resolve window's weights: the frame's resolve, the accumulation's of incomplete sums and the
+// shadow filter's of the ratio's sums use these, so that what they divide by each other covers the same
+// pixels (glsl/shared/interleave_window.glsl).
+inline constexpr InterleaveFilter kInterleaveResolve{};
+
 // What resolve writes, at full resolution.
 struct InterleaveResolveTargets {
   gl::Texture2D& irradiance;

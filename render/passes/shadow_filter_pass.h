@@ -39,7 +39,7 @@ struct ShadowFilterOptions {
   // n x n interleaving of the light pass the samples come from: their sums are first resolved over the
   // window the irradiance was resolved with (1: none)
   int tilesPerAxis = 1;
-  InterleaveFilter resolve;
+  InterleaveFilter resolve = kInterleaveResolve;
 };
 
 class ShadowFilterPass {
