@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Markdown tables of bench/convergence.sh's sweeps: relative RMSE of the shadowed indirect light
-against k and against accumulated frames for both shadow-ray target modes, and the unshadowed error
-of accumulated 4x4 interleaving. Usage: convergence_table.py OUT_DIR"""
+against k and against accumulated frames for the shadow modes at 1x1 (convergence.md); with --interleave,
+the shadowed interleaved frames and the unshadowed error of accumulated 4x4 interleaving
+(convergence_interleave.md). Usage: convergence_table.py [--interleave] OUT_DIR"""
 import csv
 import glob
 import os
@@ -56,6 +57,63 @@ def main(out):
                   + (f"{floor:.3f}" if floor is not None else "not measured") + f" | {noise} | "
                   + " | ".join(cell(fs.get((f, "on"))) for f in ("4", "16", "64")) + " | "
                   + (f"{fs[('64', 'on')] / unshadowed:.2f}x" if ("64", "on") in fs else "not run") + " |")
+
+
+def interleave_tables(out):
+    """The interleaving part: shadowed interleaved frames for the default estimator and without its
+    correction (one frame: medians of 3 repeats; 4 and 16 accumulated frames: one each), and the
+    unshadowed error of one and 16 accumulated 4x4 frames against 1x1."""
+    cases = sorted({os.path.basename(d).rsplit("_", 1)[0] for d in glob.glob(os.path.join(out, "*_*_*"))})
+    print("Relative RMSE of the shadowed indirect light (irradiance x visibility) against the Embree reference;")
+    print("320x180, alpha 2, S1, n x n interleaving. One frame: the median of 3 single frames; 4 and 16 frames:")
+    print("accumulated still frames (the light-to-tile dealing rotated every frame), one run each. `default`: the")
+    print("converging estimator; `uncorrected`: --set shadow-correct-irradiance=false. raw: --filter-passes 0 (with")
+    print("interleaving the ratio and D are still resolved over the interleaving window). Floor: the LGH irradiance")
+    print("times the reference's own visibility ratio (one frame). Last column: the largest default / uncorrected")
+    print("ratio over the row's six points (k = 1, 4, 16; filtered and raw). k -> inf: the raw error's limit in k")
+    print("fitted through k = 4 and 16 as e(k)^2 = a^2 + b^2 / k (sqrt((16 e16^2 - 4 e4^2) / 12)), over k = 4's error:")
+    print("the least 16/4 raw any k could give is about that.\n")
+    header = ("| scene, VPLs | n | frames | estimator | k=1 | k=4 | k=16 | k=1 raw | k=4 raw | k=16 raw | 16/4 raw "
+              "| k -> inf / k=4 raw | floor | worst default / uncorrected |")
+    print(header)
+    print("|" + "---|" * (header.count("|") - 1))
+    for case in cases:
+        scene, vpls = case.rsplit("_", 1)
+        errors, floors = {}, {}
+        for mode in ("lights", "uncorrected"):
+            for part in ("interleave_one", "interleave_frames"):
+                path = os.path.join(out, f"{case}_{mode}", part, "sweep.csv")
+                if not os.path.exists(path):
+                    continue
+                for r in rows(path):
+                    errors[(mode, r["interleave"], r["frames"], r["shadow_samples"], r["filter"])] = float(
+                        r["rmse_shadowed"])
+                    if r["frames"] == "1" and r.get("rmse_exact_ratio"):
+                        floors[r["interleave"]] = float(r["rmse_exact_ratio"])
+        points = sorted({(n, f) for (_, n, f, _, _) in errors}, key=lambda p: (int(p[0]), int(p[1])))
+        for n, frames in points:
+            for mode, label in (("lights", "default"), ("uncorrected", "uncorrected")):
+                e = lambda k, filt: errors.get((mode, n, frames, k, filt))
+                cell = lambda v: f"{v:.3f}" if v is not None else "not run"
+                ratio = (f"{e('16', 'off') / e('4', 'off'):.2f}x" if e("16", "off") and e("4", "off") else "")
+                limit = ""
+                if e("16", "off") and e("4", "off"):
+                    a2 = (16 * e("16", "off") ** 2 - 4 * e("4", "off") ** 2) / 12
+                    limit = f"{max(a2, 0.0) ** 0.5 / e('4', 'off'):.2f}x"
+                worst = ""
+                if mode == "lights":
+                    quotients = [(errors[("lights", n, frames, k, filt)] / errors[("uncorrected", n, frames, k, filt)],
+                                  k, filt) for k in ("1", "4", "16") for filt in ("on", "off")
+                                 if ("lights", n, frames, k, filt) in errors
+                                 and ("uncorrected", n, frames, k, filt) in errors]
+                    if quotients:
+                        q, k, filt = max(quotients)
+                        worst = f"{q:.3f} (k={k}{'' if filt == 'on' else ' raw'})"
+                floor = f"{floors[n]:.3f}" if frames == "1" and n in floors else ""
+                print(f"| {scene}, {int(vpls) // 1000}K | {n}x{n} | {frames} | {label} | "
+                      + " | ".join(cell(e(k, "on")) for k in ("1", "4", "16")) + " | "
+                      + " | ".join(cell(e(k, "off")) for k in ("1", "4", "16"))
+                      + f" | {ratio} | {limit} | {floor} | {worst} |")
     print("\nUnshadowed error of n x n interleaving, one frame and 16 accumulated still frames (light-to-tile")
     print("assignment rotated every frame):\n")
     print("| scene, VPLs | 1x1, 1 frame | 4x4, 1 frame | 4x4, 16 frames | 4x4 16 frames / 1x1 |")
@@ -71,4 +129,9 @@ def main(out):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1])
+    if len(sys.argv) == 3 and sys.argv[1] == "--interleave":
+        interleave_tables(sys.argv[2])
+    elif len(sys.argv) == 2:
+        main(sys.argv[1])
+    else:
+        sys.exit("usage: convergence_table.py [--interleave] OUT_DIR")
