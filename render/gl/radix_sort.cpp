@@ -29,6 +29,15 @@ void RadixSort::sort(const Buffer& keys, const Buffer& values, size_t count, int
   ensureSize(otherValues_, bytes);
   ensureSize(digitCounts_, (kDigits * blocks + 1) * sizeof(GLuint));
 
+  // A dispatch reads pairs from one side and writes them to the other, and reads or writes the counts.
+  auto bindPairs = [this](const Buffer& keysIn, const Buffer& valuesIn, const Buffer& keysOut,
+                          const Buffer& valuesOut) {
+    keysIn.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+    valuesIn.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+    keysOut.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+    valuesOut.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+    digitCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
+  };
   const int passes = (keyBits + 3) / 4;
   for (int pass = 0; pass < passes; ++pass) {
     const bool fromCaller = pass % 2 == 0;
@@ -42,23 +51,16 @@ void RadixSort::sort(const Buffer& keys, const Buffer& values, size_t count, int
       p->set("shift", GLuint(4 * pass));
     }
     // The blocks sorted by the digit, and their digit counts.
-    inKeys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
-    inValues.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
-    scratchKeys_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
-    scratchValues_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
-    digitCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
+    bindPairs(inKeys, inValues, scratchKeys_, scratchValues_);
     local_.dispatch1D(blocks * 256, 256);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    // Where each block's run of each digit goes; the total after them (the scatter reads run lengths
-    // as differences of neighbours).
-    const GLuint total = prefixSum_.scan(digitCounts_, kDigits * blocks);
+    // Where each block's run of each digit goes; the total after them, which is every pair (the scatter
+    // reads run lengths as differences of neighbours).
+    prefixSum_.scan(digitCounts_, kDigits * blocks);
+    const GLuint total = GLuint(count);
     digitCounts_.update(&total, sizeof(GLuint), kDigits * blocks * sizeof(GLuint));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    scratchKeys_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
-    scratchValues_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
-    outKeys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
-    outValues.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
-    digitCounts_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
+    bindPairs(scratchKeys_, scratchValues_, outKeys, outValues);
     scatter_.dispatch1D(blocks * 256, 256);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   }
