@@ -14,8 +14,18 @@ def rows(path):
         return [r for r in csv.DictReader(f) if r["method"] == "lgh"]
 
 
+def case_names(out):
+    """The (scene, VPLs) cases under OUT: its folders are named SCENE_VPLS_MODE."""
+    return sorted({os.path.basename(d).rsplit("_", 1)[0] for d in glob.glob(os.path.join(out, "*_*_*"))})
+
+
+def print_header(header):
+    print(header)
+    print("|" + "---|" * (header.count("|") - 1))
+
+
 def main(out):
-    cases = sorted({os.path.basename(d).rsplit("_", 1)[0] for d in glob.glob(os.path.join(out, "*_*_*"))})
+    cases = case_names(out)
     print("Relative RMSE of the shadowed indirect light (irradiance x visibility) against the Embree reference;")
     print("320x180, alpha 2, S1, 1x1. `lights`: the converging estimator (--shadow-estimator converging, the default):")
     print("rays to input lights drawn by share, resampled, weighed and blended by their own distance, the irradiance")
@@ -31,8 +41,7 @@ def main(out):
     print("own error, where e > floor.\n")
     header = ("| scene, VPLs | targets | k=1 | k=4 | k=16 | k=4 raw | k=16 raw | 16/4 raw | floor | 16/4 raw beyond the floor "
               "| 4 frames | 16 frames | 64 frames | 64 frames / unshadowed |")
-    print(header)
-    print("|" + "---|" * (header.count("|") - 1))
+    print_header(header)
     for case in cases:
         scene, vpls = case.rsplit("_", 1)
         k_rows = {m: rows(p) for m in ("lights", "uncorrected", "unshrunk", "centres", "paper")
@@ -63,7 +72,7 @@ def interleave_tables(out):
     """The interleaving part: shadowed interleaved frames for the default estimator and without its
     correction (one frame: medians of 3 repeats; 4 and 16 accumulated frames: one each), and the
     unshadowed error of one and 16 accumulated 4x4 frames against 1x1."""
-    cases = sorted({os.path.basename(d).rsplit("_", 1)[0] for d in glob.glob(os.path.join(out, "*_*_*"))})
+    cases = case_names(out)
     print("Relative RMSE of the shadowed indirect light (irradiance x visibility) against the Embree reference;")
     print("320x180, alpha 2, S1, n x n interleaving. One frame: the median of 3 single frames; 4 and 16 frames:")
     print("accumulated still frames (the light-to-tile dealing rotated every frame), one run each. `default`: the")
@@ -75,8 +84,7 @@ def interleave_tables(out):
     print("the least 16/4 raw any k could give is about that.\n")
     header = ("| scene, VPLs | n | frames | estimator | k=1 | k=4 | k=16 | k=1 raw | k=4 raw | k=16 raw | 16/4 raw "
               "| k -> inf / k=4 raw | floor | worst default / uncorrected |")
-    print(header)
-    print("|" + "---|" * (header.count("|") - 1))
+    print_header(header)
     for case in cases:
         scene, vpls = case.rsplit("_", 1)
         errors, floors = {}, {}
