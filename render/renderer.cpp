@@ -119,6 +119,8 @@ void Renderer::allocateTargets() {
   sampledIrradiance_.clear(glm::vec4(0.0f));
   visibility_ = gl::Texture2D(w, h, GL_RGBA32F);
   visibility_.clear(glm::vec4(1.0f));
+  lightcutsUnshadowed_ = gl::Texture2D(w, h, GL_RGBA32F);
+  filteredIrradiance_ = gl::Texture2D(w, h, GL_RGBA32F);
   indirect_ = gl::Texture2D(w, h, GL_RGBA32F);
   final_ = gl::Texture2D(w, h, GL_RGBA32F);
   gl::checkErrors("allocating render targets");
@@ -127,6 +129,12 @@ void Renderer::allocateTargets() {
 float Renderer::clampDistance() const {
   return settings_.clampDistance > 0 ? settings_.clampDistance
                                      : kDefaultClampFraction * std::max(scene_.scene().bounds.diagonal(), 1e-6f);
+}
+
+bool Renderer::lightcuts() const {
+  if (!isChoice(kIndirectMethodChoices, settings_.indirectMethod))
+    throw std::invalid_argument("unknown indirect method '" + settings_.indirectMethod + "' (choose lgh or rtslc)");
+  return settings_.indirectMethod == "rtslc";
 }
 
 bool Renderer::pointLightsThroughLgh() const {
@@ -175,6 +183,14 @@ ShadowFilterOptions Renderer::shadowFilterOptions() const {
   return o;
 }
 
+RtslcOptions Renderer::rtslcOptions() const {
+  RtslcOptions o;
+  o.settings = settings_.rtslc;
+  o.clampDistance = clampDistance();
+  o.frameSeed = frameIndex_ * 0x9e3779b9u + unsigned(settings_.inputLights.seed);
+  return o;
+}
+
 LightPassTarget Renderer::lightPassTarget() {
   const TileLayout layout =
       interleaved() ? tiles_.layout : TileLayout::of(1, settings_.image.width, settings_.image.height);
@@ -210,6 +226,31 @@ FrameStats Renderer::render(const CameraView& view) {
     // S0 (VPLs, emitter samples, many point lights) and its hierarchy, when out of date.
     stats.lightsRebuilt = updateLights();
     stats.accumulatedFrames = updateAccumulation(stats.lightsRebuilt, view);
+  }
+  if (settings_.indirect && lightcuts()) {
+    // Stochastic lightcuts, the peer method (docs/design.md §12): a cut of the light tree per pixel block, one
+    // light drawn under each cut node per pixel with its shadow ray: the shadowed irradiance, unbiased.
+    const RtslcInputs in{scene_, gbuffer_, inputLights_.lights, lightTree_};
+    const RtslcOptions options = rtslcOptions();
+    timed(passes::kLightcutCuts, [&] { rtslcPass_.selectCuts(in, options); });
+    timed(passes::kLightcutSampling, [&] { rtslcPass_.sample(in, options, {irradiance_, lightcutsUnshadowed_}); });
+    // Temporal accumulation of the estimate, as the LGH's irradiance is accumulated (each frame is unbiased:
+    // nothing to correct).
+    if (accumulating())
+      timed(passes::kAccumulation, [&] {
+        const TileLayout layout = TileLayout::of(1, settings_.image.width, settings_.image.height);
+        accumulationPass_.execute({gbuffer_, view, irradiance_, layout, false, kInterleaveResolve},
+                                  settings_.accumulation, {irradiance_, rawRatio_, sampledIrradiance_});
+      });
+    // The shadow filter's a-trous passes over the irradiance itself (less of it over more frames).
+    timed(passes::kIrradianceFilter, [&] {
+      const float fade = accumulating() ? settings_.accumulation.filterFade : 0.0f;
+      irradianceFilterPass_.execute(gbuffer_, irradiance_, {settings_.filter, fade, stats.accumulatedFrames},
+                                    filteredIrradiance_);
+    });
+    visibility_.clear(glm::vec4(1.0f));  // the irradiance is shadowed already (AOV visibility)
+    stats.lights = lightStats({});
+  } else if (settings_.indirect) {
     resolveShadows();
     const LightPassOptions options = lightPassOptions();
     // Each grid light's shadow-ray targets: input lights drawn by their share of its importance (the light
@@ -259,8 +300,10 @@ FrameStats Renderer::render(const CameraView& view) {
   }
   // Emission + direct + albedo / pi x irradiance x visibility; non-finite pixels written black, counted.
   timed(passes::kComposite, [&] {
-    const CompositeInputs in{gbuffer_, direct_, settings_.indirect ? &irradiance_ : nullptr,
-                             settings_.indirect && shadowed() ? &visibility_ : nullptr};
+    const bool lgh = settings_.indirect && !lightcuts();
+    const CompositeInputs in{gbuffer_, direct_,
+                             settings_.indirect ? (lgh ? &irradiance_ : &filteredIrradiance_) : nullptr,
+                             lgh && shadowed() ? &visibility_ : nullptr};
     stats.nonFinitePixels = compositePass_.execute(in, {indirect_, final_});
   });
   stats.passes = profiler_.collect();
@@ -306,7 +349,8 @@ int Renderer::updateAccumulation(bool lightsRebuilt, const CameraView& view) {
 bool Renderer::updateLights() {
   const InputLightKey key{settings_.inputLights, pointLightsThroughLgh(), scene_.lightsVersion()};
   const LghBuildOptions hierarchyOptions = buildOptions();
-  const LightBuilds::Plan plan = builds_.plan(key, hierarchyOptions.levels, !settings_.lightPass.bruteForce);
+  const LightBuilds::Plan plan =
+      builds_.plan(key, hierarchyOptions.levels, !settings_.lightPass.bruteForce && !lightcuts(), lightcuts());
   // A light moved through SceneGpu::setPunctualLight rebuilds both, as in the paper (VPLs are not reprojected).
   if (plan.inputLights) {
     timed(passes::kInputLights, [&] { inputLightsPass_.execute(key.settings, key.pointLightsToS0, inputLights_); });
@@ -317,7 +361,12 @@ bool Renderer::updateLights() {
           [&] { buildPass_.execute(inputLights_.lights, inputLights_.count, hierarchyOptions, hierarchy_); });
     builds_.builtHierarchy(hierarchyOptions.levels);
   }
-  return plan.inputLights || plan.hierarchy;
+  if (plan.lightTree) {
+    timed(passes::kLightTreeBuild,
+          [&] { lightTreePass_.execute(inputLights_.lights, inputLights_.count, lightTree_); });
+    builds_.builtLightTree();
+  }
+  return plan.inputLights || plan.hierarchy || plan.lightTree;
 }
 
 LightStats Renderer::lightStats(const LightPassDraws& draws) const {
@@ -327,7 +376,7 @@ LightStats Renderer::lightStats(const LightPassDraws& draws) const {
   stats.pointLights = inputLights_.pointLights;
   stats.emitterSamples = inputLights_.emitterSamples;
   stats.vpls = inputLights_.vpls;
-  stats.levels = settings_.lightPass.bruteForce ? 0 : hierarchy_.grid.levels;
+  stats.levels = settings_.lightPass.bruteForce || lightcuts() ? 0 : hierarchy_.grid.levels;
   return stats;
 }
 
@@ -355,8 +404,8 @@ const gl::Texture2D& Renderer::texture(Aov aov) const {
       return direct_;
     case Aov::Indirect:
       return indirect_;
-    case Aov::Irradiance:
-      return irradiance_;
+    case Aov::Irradiance:  // the lightcuts' is shadowed, and filtered as the composite uses it
+      return settings_.indirect && lightcuts() ? filteredIrradiance_ : irradiance_;
     case Aov::Ratio:
       return rawRatio_;
     case Aov::Visibility:

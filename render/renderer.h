@@ -18,8 +18,11 @@
 #include "render/passes/gbuffer_pass.h"
 #include "render/passes/input_lights_pass.h"
 #include "render/passes/interleave_pass.h"
+#include "render/passes/irradiance_filter_pass.h"
 #include "render/passes/lgh_build_pass.h"
+#include "render/passes/light_tree_pass.h"
 #include "render/passes/light_volume_pass.h"
+#include "render/passes/rtslc_pass.h"
 #include "render/passes/shadow_filter_pass.h"
 #include "render/passes/shadow_ray_pass.h"
 #include "render/passes/shadow_targets_pass.h"
@@ -41,12 +44,18 @@ inline constexpr const char* kShadowRays = "shadow rays";
 inline constexpr const char* kAccumulation = "accumulation";
 inline constexpr const char* kShadowFilter = "shadow filter";
 inline constexpr const char* kComposite = "composite";
+// The stochastic lightcuts (--indirect-method rtslc) in place of the LGH's passes.
+inline constexpr const char* kLightTreeBuild = "light tree build";
+inline constexpr const char* kLightcutCuts = "lightcut cuts";
+inline constexpr const char* kLightcutSampling = "lightcut sampling";
+inline constexpr const char* kIrradianceFilter = "irradiance filter";
 }  // namespace passes
 
 // Images a frame can hand back (AOVs).
 //   indirect    radiance through the LGH, unshadowed (albedo / pi x irradiance)
 //   overdraw    heat map of fragments rasterized per pixel in the light pass (needs settings.overdraw)
-//   irradiance  the light pass's irradiance (before albedo), accumulated over the frames the history holds
+//   irradiance  the light pass's irradiance (before albedo), accumulated over the frames the history holds;
+//               with the lightcuts their shadowed irradiance, accumulated and filtered
 //   ratio       unfiltered visibility ratio of the indirect light (mean of the k shadow rays, accumulated)
 //   visibility  the filtered ratio that multiplies the indirect light
 enum class Aov { Final, Direct, Indirect, Irradiance, Ratio, Visibility, Overdraw, Emission, Albedo, Normal, Position };
@@ -104,12 +113,15 @@ class Renderer {
   const InputLights& inputLights() const { return inputLights_; }
   const GpuHierarchy& hierarchy() const { return hierarchy_; }
   const ShadowSlots& shadowSlots() const { return shadowSlots_; }  // the last frame's selection
+  const GpuLightTree& lightTree() const { return lightTree_; }     // with --indirect-method rtslc
 
  private:
   void allocateTargets();
   void uploadFrameUniforms(const CameraView& view);
   bool pointLightsThroughLgh() const;
   bool shadowed() const { return settings_.shadows.samples > 0; }
+  // The indirect light through the stochastic lightcuts instead of the LGH (settings.indirectMethod).
+  bool lightcuts() const;
   // Shadow rays aim at input lights drawn from the selected grid lights' clusters.
   bool drawsShadowTargets() const { return shadowEstimator_.drawnTargets > 0 && hierarchy_.gridLightCount > 0; }
   // This frame's shadow estimator (the settings resolved against its limits); says once on stderr what a
@@ -125,6 +137,7 @@ class Renderer {
   // What the shadow rays read of the light pass that filled the slots (`lightPass`), to recompute its selection.
   static ShadowRayOptions shadowRayOptions(const LightPassOptions& lightPass);
   ShadowFilterOptions shadowFilterOptions() const;
+  RtslcOptions rtslcOptions() const;
   LightPassTarget lightPassTarget();
   // The frame's steps that are more than one call: S0 and the hierarchy when they are out of date,
   // then the light pass with its optional interleaving.
@@ -156,6 +169,9 @@ class Renderer {
   ShadowRayPass shadowRayPass_;
   AccumulationPass accumulationPass_;
   ShadowFilterPass shadowFilterPass_;
+  LightTreePass lightTreePass_;  // the lightcuts' passes, in place of the LGH's
+  RtslcPass rtslcPass_;
+  IrradianceFilterPass irradianceFilterPass_;
   CompositePass compositePass_;
 
   ShadowEstimator shadowEstimator_;       // resolved each frame by resolveShadows()
@@ -170,19 +186,22 @@ class Renderer {
   LightBuilds builds_;
   InputLights inputLights_;
   GpuHierarchy hierarchy_;
+  GpuLightTree lightTree_;
 
   // Targets the passes hand to each other.
   GBuffer gbuffer_;
   gl::Texture2D direct_;
-  Tiles tiles_;                      // interleaved surfaces and light-pass targets (n > 1)
-  gl::Texture2D irradiance_;         // LGH irradiance, full resolution
-  gl::Texture2D fragmentCounts_;     // R32UI, light-pass fragments per pixel (settings.overdraw)
-  ShadowSlots shadowSlots_;          // k selected lights per light-pass pixel
-  ShadowTargets shadowTargets_;      // input lights drawn per grid light as the rays' targets
-  gl::Texture2D rawRatio_;           // r: visibility ratio from the shadow rays (accumulated; a: frames)
-  gl::Texture2D sampledIrradiance_;  // R32F: the irradiance luminance the shadow samples were drawn against
-  gl::Texture2D visibility_;         // r: filtered ratio
-  gl::Texture2D indirect_;           // albedo / pi x irradiance, unshadowed
+  Tiles tiles_;                        // interleaved surfaces and light-pass targets (n > 1)
+  gl::Texture2D irradiance_;           // LGH irradiance, full resolution
+  gl::Texture2D fragmentCounts_;       // R32UI, light-pass fragments per pixel (settings.overdraw)
+  ShadowSlots shadowSlots_;            // k selected lights per light-pass pixel
+  ShadowTargets shadowTargets_;        // input lights drawn per grid light as the rays' targets
+  gl::Texture2D rawRatio_;             // r: visibility ratio from the shadow rays (accumulated; a: frames)
+  gl::Texture2D sampledIrradiance_;    // R32F: the irradiance luminance the shadow samples were drawn against
+  gl::Texture2D visibility_;           // r: filtered ratio
+  gl::Texture2D lightcutsUnshadowed_;  // the lightcuts' samples without their shadow rays
+  gl::Texture2D filteredIrradiance_;   // the lightcuts' irradiance, filtered
+  gl::Texture2D indirect_;             // albedo / pi x irradiance, unshadowed
   gl::Texture2D final_;
 };
 

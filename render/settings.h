@@ -11,6 +11,7 @@
 
 #include "shared/lgh_types.h"
 #include "shared/light_pass_types.h"
+#include "shared/light_tree_types.h"
 
 namespace lgh {
 
@@ -95,17 +96,28 @@ struct AccumulationSettings {
                             // skipped for N accumulated frames (0: no fade)
 };
 
+// The peer method, real-time stochastic lightcuts (RtslcPass; docs/design.md §12): indirect light from the
+// same S0 through a light tree instead of the LGH, shadowed sample by sample.
+struct RtslcSettings {
+  int samples = 8;            // n: cut nodes per block, one light sample each per pixel (the paper's default)
+  int blockSize = 8;          // B: pixels per side of the blocks that share a cut (1: per-pixel cuts)
+  int interleave = 1;         // m: an m x m group of pixels splits each cut (1, 2, 4)
+  float errorLimit = 0.001f;  // the cut's distance floor, as a share of the lights' box diagonal
+};
+
 struct RenderSettings {
   ImageSettings image;
-  bool directShadows = true;   // DirectLightPass: one shadow ray per punctual light
-  bool indirect = true;        // light through the LGH; false: emission and direct light only
-  float clampDistance = 0.0f;  // d_c in metres; 0 = automatic (1e-2 of the scene diagonal)
+  std::string indirectMethod = "lgh";  // lgh | rtslc
+  bool directShadows = true;           // DirectLightPass: one shadow ray per punctual light
+  bool indirect = true;                // light through the LGH; false: emission and direct light only
+  float clampDistance = 0.0f;          // d_c in metres; 0 = automatic (1e-2 of the scene diagonal)
   InputLightSettings inputLights;
   HierarchySettings hierarchy;
   LightPassSettings lightPass;
   ShadowSettings shadows;
   ShadowFilterSettings filter;
   AccumulationSettings accumulation;
+  RtslcSettings rtslc;
 };
 
 // Who a setting is for. User: shown by --help, the README and the viewer panel's main section.
@@ -149,6 +161,7 @@ struct SettingInfo {
 // The estimator names (render/shadow_estimator.h) and tone curves, as SettingInfo::choices.
 inline constexpr const char* kShadowEstimatorChoices = "converging|paper|uniform";
 inline constexpr const char* kToneMapChoices = "aces|reinhard|clamp";
+inline constexpr const char* kIndirectMethodChoices = "lgh|rtslc";
 
 // visit(value&, SettingInfo) for each setting, in the order users see them.
 template <typename Settings, typename Visitor>
@@ -167,6 +180,10 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(s.clampDistance,
         SettingInfo{"clamp-distance", "d_c in 1/max(d^2, d_c^2), metres (0: 1e-2 x scene diagonal)", 0, 1e9});
   visit(s.indirect, SettingInfo{"indirect", "indirect light through the LGH (false: direct light only)"});
+  visit(s.indirectMethod,
+        SettingInfo{"indirect-method", "lgh (the lighting grid hierarchy) or rtslc (stochastic lightcuts, the peer)"}
+            .forUsers()
+            .oneOf(kIndirectMethodChoices));
   auto& lights = s.inputLights;
   visit(lights.vpls, SettingInfo{"vpls", "VPL budget (ceil(vpls / bounces) light paths)", 0, 16000000}.forUsers());
   visit(lights.bounces, SettingInfo{"bounces", "diffuse bounces per light path, a VPL at each", 1, 3});
@@ -243,6 +260,14 @@ void visitSettings(Settings& s, Visitor&& visit) {
             .keepingHistory());
   visit(filter.ratioSigma,
         SettingInfo{"filter-ratio-sigma", "a-trous ratio-difference sigma", 0.001, 100}.keepingHistory());
+  auto& rtslc = s.rtslc;
+  visit(rtslc.samples,
+        SettingInfo{"rtslc-samples", "lightcuts: cut nodes, one light sample each per pixel", 1, gpu::kMaxCutNodes});
+  visit(rtslc.blockSize, SettingInfo{"rtslc-block", "lightcuts: pixels per side sharing a cut (1: per pixel)", 1, 64});
+  visit(rtslc.interleave,
+        SettingInfo{"rtslc-interleave", "lightcuts: m x m pixels split each cut's nodes (1, 2, 4)", 1, 4});
+  visit(rtslc.errorLimit,
+        SettingInfo{"rtslc-error-limit", "lightcuts: the cut's distance floor, share of the lights' extent", 0, 1});
   auto& accumulation = s.accumulation;
   visit(accumulation.enabled,
         SettingInfo{"accumulate", "average frames while the view is still (on in the viewer and with --frames > 1)"}

@@ -9,10 +9,12 @@ namespace lgh {
 namespace {
 
 // Plays what Renderer::updateLights does: plans, then records the builds it ran.
-LightBuilds::Plan frame(LightBuilds& builds, const InputLightKey& key, int levels, bool drawsHierarchy) {
-  const LightBuilds::Plan plan = builds.plan(key, levels, drawsHierarchy);
+LightBuilds::Plan frame(LightBuilds& builds, const InputLightKey& key, int levels, bool drawsHierarchy,
+                        bool drawsLightTree = false) {
+  const LightBuilds::Plan plan = builds.plan(key, levels, drawsHierarchy, drawsLightTree);
   if (plan.inputLights) builds.builtInputLights(key);
   if (plan.hierarchy) builds.builtHierarchy(levels);
+  if (plan.lightTree) builds.builtLightTree();
   return plan;
 }
 
@@ -78,6 +80,28 @@ TEST(LightBuilds, NewLightsDuringBruteForceRebuildTheHierarchyLater) {
   p = frame(builds, key, 0, true);
   EXPECT_FALSE(p.inputLights);
   EXPECT_TRUE(p.hierarchy);
+}
+
+// Switching the indirect method to the lightcuts and back: each structure is built when first drawn and
+// again only over a new S0.
+TEST(LightBuilds, TheLightTreeIsBuiltWhenDrawnAndRebuiltOverNewLights) {
+  LightBuilds builds;
+  InputLightKey key;
+  LightBuilds::Plan p = frame(builds, key, 0, true);
+  EXPECT_FALSE(p.lightTree);
+  p = frame(builds, key, 0, false, true);
+  EXPECT_FALSE(p.inputLights);
+  EXPECT_FALSE(p.hierarchy);
+  EXPECT_TRUE(p.lightTree);
+  p = frame(builds, key, 0, false, true);
+  EXPECT_FALSE(p.lightTree);
+  ++key.lightsVersion;
+  p = frame(builds, key, 0, false, true);
+  EXPECT_TRUE(p.inputLights);
+  EXPECT_TRUE(p.lightTree) << "a tree over the old S0 is stale";
+  p = frame(builds, key, 0, true);
+  EXPECT_TRUE(p.hierarchy) << "the hierarchy was over the old S0";
+  EXPECT_FALSE(p.lightTree);
 }
 
 }  // namespace

@@ -1,0 +1,64 @@
+#include "render/passes/rtslc_pass.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "render/gl/debug.h"
+#include "shared/bindings.h"
+
+namespace lgh {
+
+RtslcPass::RtslcPass() : program_(gl::Program::compute("rtslc.comp")), uniforms_(sizeof(gpu::RtslcUniforms)) {}
+
+void RtslcPass::bind(const RtslcInputs& in, const RtslcOptions& options, size_t dispatch) {
+  const RtslcSettings& s = options.settings;
+  if (s.samples < 1 || s.samples > int(gpu::kMaxCutNodes))
+    throw std::invalid_argument("lightcuts: " + std::to_string(s.samples) + " samples (use 1.." +
+                                std::to_string(gpu::kMaxCutNodes) + ")");
+  if (s.blockSize < 1)
+    throw std::invalid_argument("lightcuts: block size " + std::to_string(s.blockSize) + " (use 1 or more)");
+  if (s.interleave != 1 && s.interleave != 2 && s.interleave != 4)
+    throw std::invalid_argument("lightcuts: interleave " + std::to_string(s.interleave) + " (use 1, 2 or 4)");
+  const unsigned blocksPerRow = unsigned((in.gbuffer.width + s.blockSize - 1) / s.blockSize);
+  const unsigned blockRows = unsigned((in.gbuffer.height + s.blockSize - 1) / s.blockSize);
+  gl::ensureSize(cuts_, size_t(blocksPerRow) * blockRows * gpu::kMaxCutNodes * sizeof(GLuint));
+  gpu::RtslcUniforms u{};
+  u.stage = dispatch == 0 ? gpu::kRtslcCuts : gpu::kRtslcSampling;
+  u.leafCount = in.tree.leafCount;
+  u.cutSize = unsigned(s.samples);
+  u.blockSize = unsigned(s.blockSize);
+  u.blocksPerRow = blocksPerRow;
+  u.interleave = unsigned(s.interleave);
+  u.frameSeed = options.frameSeed;
+  u.errorLimit = s.errorLimit;
+  u.clampDistance = options.clampDistance;
+  uniforms_.upload(std::vector<gpu::RtslcUniforms>{u});
+  uniforms_.bind(0, LGH_UBO_PASS);
+  in.scene.bindForCompute();
+  in.gbuffer.bindForReading();
+  in.inputLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  // Without lights there is no tree: any buffer stands in (the shader reads none of it).
+  (in.tree.leafCount ? in.tree.nodes : in.inputLights).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  (in.tree.leafCount ? in.tree.bounds : in.inputLights).bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  cuts_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+}
+
+void RtslcPass::selectCuts(const RtslcInputs& in, const RtslcOptions& options) {
+  bind(in, options, 0);
+  const int block = options.settings.blockSize;
+  program_.dispatch2D((in.gbuffer.width + block - 1) / block, (in.gbuffer.height + block - 1) / block, {8, 8});
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  gl::checkErrors("lightcut cuts");
+}
+
+void RtslcPass::sample(const RtslcInputs& in, const RtslcOptions& options, const RtslcTargets& out) {
+  bind(in, options, 1);
+  out.shadowed.bindImage(LGH_IMAGE_RTSLC_SHADOWED, GL_WRITE_ONLY);
+  out.unshadowed.bindImage(LGH_IMAGE_RTSLC_UNSHADOWED, GL_WRITE_ONLY);
+  program_.dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
+  glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+  gl::checkErrors("lightcut sampling");
+}
+
+}  // namespace lgh
