@@ -90,4 +90,9 @@ double shadowMs(const FrameStats& stats) {
   return stats.passMs(passes::kShadowTargets) + stats.passMs(passes::kShadowRays) + stats.passMs(passes::kShadowFilter);
 }
 
+double lightcutsMs(const FrameStats& stats) {
+  return stats.passMs(passes::kLightcutCuts) + stats.passMs(passes::kLightcutSampling) +
+         stats.passMs(passes::kIrradianceFilter);
+}
+
 }  // namespace lgh::bench

@@ -86,5 +86,7 @@ size_t gridLightsOf(const LightStats& lights);
 double lightPassMs(const FrameStats& stats);
 // The indirect shadows: shadow targets + shadow rays + shadow filter (ms).
 double shadowMs(const FrameStats& stats);
+// The stochastic lightcuts' frame without its tree build: cuts, sampling, irradiance filter.
+double lightcutsMs(const FrameStats& stats);
 
 }  // namespace lgh::bench

@@ -188,7 +188,15 @@ def analyse(rows):
                 if brute_ms:
                     entry["speedup_brute"] = brute_ms / t
                 equal_error.append(entry)
+            # The peer method's points (stochastic lightcuts), shadowed only, and the equal-time comparison.
+            rtslc = []
+            if kind == "shadowed":
+                rtslc = [(number(r[spec["time"]]), number(r[spec["error"]]), r) for r in case_rows
+                         if r["method"] == "rtslc"]
+                rtslc = [p for p in rtslc if p[0] is not None and p[1] is not None]
             results[(scene, vpls, kind)] = {"points": points, "front": front, "baselines": baselines, "model": model,
+                                            "rtslc_points": rtslc, "rtslc_front": pareto(rtslc) if rtslc else [],
+                                            "versus_rtslc": versus(front, pareto(rtslc)) if rtslc else [],
                                             "brute_ms": brute_ms,
                                             "brute_extrapolated": bool(brute and brute["extrapolated"] == "1"),
                                             "brute_ratio": (number(ratio[spec["time"]]), number(ratio[spec["error"]]))
@@ -196,6 +204,29 @@ def analyse(rows):
                                             "equal_time": equal_time, "equal_error": equal_error, "n": n,
                                             "rows": case_rows}
     return results
+
+
+def best_within(front, t):
+    reached = [e for ft, e, _ in front if ft <= t]
+    return min(reached) if reached else None
+
+
+def versus(lgh_front, rtslc_front):
+    """At each time budget where both fronts have a point (each front point's time, from the later of the two
+    fronts' first points on): the best error either reaches in no more time, and LGH / RTSLC."""
+    budgets = sorted({t for t, _, _ in lgh_front} | {t for t, _, _ in rtslc_front})
+    rows = []
+    for t in budgets:
+        el, er = best_within(lgh_front, t), best_within(rtslc_front, t)
+        if el is not None and er is not None:
+            rows.append({"time": t, "lgh": el, "rtslc": er, "ratio": el / er})
+    return rows
+
+
+def rtslc_label(row):
+    block, m = row.get("rtslc_block", ""), row["interleave"]
+    return f"n={row['shadow_samples']} B{block}" + (f" {m}x{m}" if m not in ("", "1") else "") + (
+        " raw" if row["filter"] == "off" else "")
 
 
 def case_title(scene, vpls, n):
@@ -309,6 +340,17 @@ def plot_front(results, out):
             for n, (t, e, r) in enumerate(res["front"]):  # labels alternately above and below the front
                 ax.annotate(short_label(r), (t, e), fontsize=4.5, xytext=(3, 2 if n % 2 else -6),
                             textcoords="offset points")
+            if res.get("rtslc_points"):
+                rp = res["rtslc_points"]
+                ax.scatter([p[0] for p in rp], [p[1] for p in rp], s=10, marker="s", color="tab:orange", alpha=0.4,
+                           edgecolors="none", label="stochastic lightcuts")
+                rx, ry = [p[0] for p in res["rtslc_front"]], [p[1] for p in res["rtslc_front"]]
+                ax.step(rx + [max(rx + ts) * 1.5], ry + [ry[-1]], where="post", color="tab:orange", lw=1, zorder=3,
+                        label="lightcuts Pareto front")
+                for n, (t, e, r) in enumerate(res["rtslc_front"]):
+                    ax.annotate(rtslc_label(r), (t, e), fontsize=4.5, color="tab:orange",
+                                xytext=(3, -6 if n % 2 else 2), textcoords="offset points")
+                ts, es = ts + rx, es + [p[1] for p in rp]
             draw_error_axes(ax, res, ts, es)
             ax.set_title(f"{case_title(case[0], case[1], res['n'])}\n{KINDS[kind]['title']}", fontsize=7.5)
             ax.set_xlabel("time per frame (ms)", fontsize=7)
@@ -553,6 +595,26 @@ def summary(results, rows, info):
                     f"{float(r['rmse_unshadowed']):.3f} | {float(r['fragments_per_pixel']):,.0f} | "
                     f"{x.get('speedup_brute', float('nan')):,.0f}x |")
             add("")
+        if sh and sh.get("rtslc_front"):
+            add("Stochastic lightcuts front (time = light tree build + cuts + sampling + irradiance filter):\n")
+            add("| settings | ms | rel. RMSE shadowed | cuts ms | sampling ms |")
+            add("|---|---:|---:|---:|---:|")
+            for t, e, r in sh["rtslc_front"]:
+                add(f"| {rtslc_label(r)} | {fmt_ms(t)} | {e:.3f} | {fmt_ms(number(r.get('rtslc_cuts_ms')))} | "
+                    f"{fmt_ms(number(r.get('rtslc_sampling_ms')))} |")
+            add("")
+            v = sh["versus_rtslc"]
+            if v:
+                ratios = [x["ratio"] for x in v]
+                add(f"LGH or light tree, at equal time (each budget where both fronts have a point; the best error "
+                    f"each reaches in no more time): LGH / lightcuts median {float(np.median(ratios)):.2f}x, range "
+                    f"{min(ratios):.2f}-{max(ratios):.2f}x over {len(ratios)} budgets (below 1: the LGH is more "
+                    "accurate).\n")
+                add("| budget ms | LGH | lightcuts | LGH / lightcuts |")
+                add("|---:|---:|---:|---:|")
+                for x in v:
+                    add(f"| {fmt_ms(x['time'])} | {x['lgh']:.3f} | {x['rtslc']:.3f} | {x['ratio']:.2f}x |")
+                add("")
         for kind, res in kinds.items():
             for method, entries in res["equal_time"].items():
                 add(f"Equal time, {kind}, {res['baselines'][method]['legend']} (its error / the best LGH error in no more "

@@ -149,6 +149,20 @@ void addGridOptions(CLI::App& command, SweepOptions& options) {
       ->delimiter(',')
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
+  command
+      .add_option("--rtslc-samples", options.rtslcSamples,
+                  "stochastic lightcuts (the peer method) beside the LGH grid: samples per pixel n, comma-separated "
+                  "(1-32; none: no lightcut points); with the same --filter and --frames")
+      ->delimiter(',')
+      ->check(CLI::Range(1, int(gpu::kMaxCutNodes)));
+  command.add_option("--rtslc-block", options.rtslcBlocks, "lightcuts: cut-sharing blocks B (1: per pixel)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  command.add_option("--rtslc-interleave", options.rtslcInterleave, "lightcuts: interleaving m (1, 2, 4)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({1, 2, 4}))
+      ->capture_default_str();
   command.add_option("--repeats", options.repeats, "timed frames per point")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
@@ -226,7 +240,8 @@ std::vector<PointSpec> applyReadmePreset(SweepOptions& options, const std::funct
   return readmePoints();
 }
 
-// A tiny run for ctest (--preset smoke): the project's Cornell box, 64 x 36, 1K VPLs, two alphas at S0.
+// A tiny run for ctest (--preset smoke): the project's Cornell box, 64 x 36, 1K VPLs, two alphas at S0, one
+// point of the stochastic lightcuts.
 void applySmokePreset(SweepOptions& options, const std::function<bool(const char*)>& given) {
   if (!given("--scene")) options.scenes = {(fs::path(LGH_DATA_DIR) / "cornell_box.gltf").string()};
   if (!given("--width")) options.settings.image.width = 64;
@@ -240,6 +255,7 @@ void applySmokePreset(SweepOptions& options, const std::function<bool(const char
   if (!given("--uniform-shadowed-lights")) options.uniformShadowedLights = {2, 4};
   if (!given("--images")) options.images = false;
   if (!given("--retries")) options.retries = 0;  // ctest runs tests side by side: times are not the point
+  if (!given("--rtslc-samples")) options.rtslcSamples = {2};  // one point of the peer method
 }
 
 }  // namespace
@@ -282,6 +298,13 @@ int runSweepBench(SweepOptions options) {
     for (const std::string& f : options.filter) filters.push_back(f == "on");
     points =
         grid(options.alphas, options.startLevels, options.interleave, options.shadowSamples, filters, options.frames);
+  }
+  if (!options.rtslcSamples.empty()) {
+    std::vector<bool> filters;
+    for (const std::string& f : options.filter) filters.push_back(f == "on");
+    for (const PointSpec& p :
+         lightcutPoints(options.rtslcSamples, options.rtslcBlocks, options.rtslcInterleave, filters, options.frames))
+      points.push_back(p);
   }
   for (size_t m : options.uniformLights)
     if (m == 0) throw std::runtime_error("--uniform-lights: subset sizes must be >= 1");

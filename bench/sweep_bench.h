@@ -34,6 +34,11 @@ struct SweepOptions {
   std::vector<int> shadowSamples{4};
   std::vector<std::string> filter{"on"};  // on: the a-trous filter (filter-passes); off: the raw ratio
   std::vector<int> frames{1};             // still frames accumulated per measurement (the last is measured)
+  // The stochastic lightcuts' grid (with the same filter and frames lists): samples n x blocks B x
+  // interleave m; no samples: no lightcut points.
+  std::vector<int> rtslcSamples;
+  std::vector<int> rtslcBlocks{8};
+  std::vector<int> rtslcInterleave{1};
   int repeats = 3;
   // Reference: pixel fraction (0: automatic, all pixels unless that exceeds referenceBudget pairs).
   double referencePixels = 0;
@@ -56,8 +61,9 @@ struct SweepOptions {
 
 // The render settings the sweep sets itself: the grid's (lists: --vpls, --alpha, ...), the camera
 // (--scene PATH@CAMERA) and the measurements' own (overdraw, brute force). No --set for them.
-inline const std::vector<std::string> kSweepOwnSettings{"camera",     "vpls",           "alpha",    "start-level",
-                                                        "interleave", "shadow-samples", "overdraw", "brute-force"};
+inline const std::vector<std::string> kSweepOwnSettings{
+    "camera",   "vpls",        "alpha",           "start-level",   "interleave",  "shadow-samples",
+    "overdraw", "brute-force", "indirect-method", "rtslc-samples", "rtslc-block", "rtslc-interleave"};
 
 CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options);
 // Returns 0, or 1 when a check failed: NaN/Inf pixels or errors, the GL brute force disagreeing with

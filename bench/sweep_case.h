@@ -17,7 +17,8 @@ namespace lgh::bench {
 // Method names, as in the CSV and JSON.
 namespace methods {
 inline constexpr const char* kLgh = "lgh";
-inline constexpr const char* kBruteForce = "brute_force";                   // rasterized, all S0, unshadowed
+inline constexpr const char* kRtslc = "rtslc";             // stochastic lightcuts, the peer method (a grid of its own)
+inline constexpr const char* kBruteForce = "brute_force";  // rasterized, all S0, unshadowed
 inline constexpr const char* kBruteForceRatio = "brute_force_ratio";        // ... with the frame's shadow estimate
 inline constexpr const char* kBruteForceShadowed = "brute_force_shadowed";  // one ray per light and pixel
 inline constexpr const char* kUniform = "uniform";                          // M of the N lights, scaled by N / M
@@ -38,7 +39,7 @@ struct Measurement {
          inputLights = 0;  // the VPLs asked for and made, |S0| (budget: settings.inputLights.vpls)
   std::map<std::string, std::vector<double>> passMs;      // per repeat
   std::vector<double> timeMs, timeUnshadowedMs, frameMs;  // per repeat: the compared times
-  double buildMs = kNaN;
+  double buildMs = kNaN;                                  // the LGH's build, or the lightcuts' tree build
   bool extrapolated = false;
   LightStats lights;
   std::vector<double> rmseUnshadowed, psnrUnshadowed, rmseShadowed, psnrShadowed;
@@ -47,6 +48,8 @@ struct Measurement {
   std::string image;     // .npy of the (shadowed) estimate, relative to the output folder
 
   bool lgh() const { return method == methods::kLgh; }
+  bool lightcuts() const { return method == methods::kRtslc; }
+  bool gridPoint() const { return lgh() || lightcuts(); }  // `point` says its settings
   void addPassTimes(const FrameStats& stats) {
     for (const gl::PassTiming& p : stats.passes) passMs[p.name].push_back(p.wallMs > 0 ? p.wallMs : p.gpuMs);
   }
@@ -82,6 +85,7 @@ struct Case {
   double clampDistance = 0;
   RenderSettings base;  // every measurement's settings differ from these only where it says
   std::vector<double> buildMs;
+  std::vector<double> treeBuildMs;  // the lightcuts' light tree over S0 (when the grid has lightcut points)
   ReferenceInfo reference;
   std::vector<Measurement> measurements;
 };

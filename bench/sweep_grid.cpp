@@ -16,12 +16,21 @@ void appendUnique(std::vector<PointSpec>& to, const std::vector<PointSpec>& from
 }  // namespace
 
 bool PointSpec::operator<(const PointSpec& o) const {
-  return std::tie(startLevel, alpha, interleave, k, filter, frames) <
-         std::tie(o.startLevel, o.alpha, o.interleave, o.k, o.filter, o.frames);
+  return std::tie(lightcuts, block, startLevel, alpha, interleave, k, filter, frames) <
+         std::tie(o.lightcuts, o.block, o.startLevel, o.alpha, o.interleave, o.k, o.filter, o.frames);
 }
 
 RenderSettings PointSpec::applied(const RenderSettings& base) const {
   RenderSettings s = base;
+  if (lightcuts) {
+    s.indirectMethod = "rtslc";
+    s.rtslc.samples = k;
+    s.rtslc.blockSize = block;
+    s.rtslc.interleave = interleave;
+    s.filter.passes = filter ? base.filter.passes : 0;
+    if (frames > 1) s.accumulation.enabled = true;
+    return s;
+  }
   s.lightPass.alpha = alpha;
   s.lightPass.startLevel = startLevel;
   s.lightPass.interleave = interleave;
@@ -55,8 +64,34 @@ std::vector<PointSpec> readmePoints() {
   return points;
 }
 
+std::vector<PointSpec> lightcutPoints(const std::vector<int>& samples, const std::vector<int>& blocks,
+                                      const std::vector<int>& interleaves, const std::vector<bool>& filters,
+                                      const std::vector<int>& frames) {
+  std::vector<PointSpec> points;
+  for (int b : blocks)
+    for (int m : interleaves)
+      for (int n : samples)
+        for (bool f : filters)
+          for (int count : frames) {
+            PointSpec p;
+            p.lightcuts = true;
+            p.block = b;
+            p.interleave = m;
+            p.k = n;
+            p.filter = f;
+            p.frames = count;
+            points.push_back(p);
+          }
+  return points;
+}
+
 std::string settingsLabel(const PointSpec& p) {
   char buffer[96];
+  if (p.lightcuts) {
+    std::snprintf(buffer, sizeof buffer, "n=%d B%d %dx%d%s", p.k, p.block, p.interleave, p.interleave,
+                  p.filter ? "" : " raw");
+    return p.frames > 1 ? std::string(buffer) + " " + std::to_string(p.frames) + " frames" : std::string(buffer);
+  }
   std::snprintf(buffer, sizeof buffer, "a=%g S%d %dx%d k=%d%s", double(p.alpha), p.startLevel, p.interleave,
                 p.interleave, p.k, p.filter || p.k == 0 ? "" : " raw");
   return p.frames > 1 ? std::string(buffer) + " " + std::to_string(p.frames) + " frames" : std::string(buffer);
@@ -64,6 +99,11 @@ std::string settingsLabel(const PointSpec& p) {
 
 std::string fileLabel(const PointSpec& p) {
   char buffer[96];
+  if (p.lightcuts) {
+    std::snprintf(buffer, sizeof buffer, "rtslc_n%d_b%d_m%d_%s", p.k, p.block, p.interleave,
+                  p.filter ? "filter" : "raw");
+    return p.frames > 1 ? std::string(buffer) + "_f" + std::to_string(p.frames) : std::string(buffer);
+  }
   std::snprintf(buffer, sizeof buffer, "a%g_s%d_n%d_k%d_%s", double(p.alpha), p.startLevel, p.interleave, p.k,
                 p.filter ? "filter" : "raw");
   return p.frames > 1 ? std::string(buffer) + "_f" + std::to_string(p.frames) : std::string(buffer);

@@ -60,7 +60,7 @@ void printGridCase(const Case& c) {
   TextTable table({"method", "settings", "frag/px", "time ms (shadowed)", "time ms (unshadowed)", "rmse unsh.",
                    "rmse shadowed", "psnr sh."});
   for (const Measurement& m : c.measurements) {
-    std::string settings = m.lgh() ? settingsLabel(m.point) : "M = " + formatCount(m.subsetLights);
+    std::string settings = m.gridPoint() ? settingsLabel(m.point) : "M = " + formatCount(m.subsetLights);
     if (m.extrapolated) settings += " (extrapolated)";
     table.addRow({m.method, settings, m.lgh() ? formatMs(m.lights.rasterizedPerPixel) : "-",
                   m.timeMs.empty() ? "-" : formatSpread(spreadOf(m.timeMs)),
@@ -88,7 +88,7 @@ constexpr const char* kCsvHeader =
     "shadow_samples,filter,subset_lights,levels,grid_lights,fragments_per_pixel,shaded_per_pixel,time_ms,time_ms_min,"
     "time_ms_max,time_unshadowed_ms,build_ms,light_pass_ms,interleave_ms,shadow_rays_ms,shadow_filter_ms,frame_ms,"
     "extrapolated,rmse_unshadowed,psnr_unshadowed,rmse_shadowed,psnr_shadowed,rmse_shadowed_min,rmse_shadowed_max,"
-    "reference_pixels,others_cpu,image,frames,rmse_exact_ratio";
+    "reference_pixels,others_cpu,image,frames,rmse_exact_ratio,rtslc_block,rtslc_cuts_ms,rtslc_sampling_ms";
 
 std::string num(double v) {
   if (!std::isfinite(v)) return std::string();
@@ -97,10 +97,13 @@ std::string num(double v) {
   return buffer;
 }
 
-// The LGH point's columns (alpha .. shaded_per_pixel); empty for the baselines but subset_lights.
+// The LGH point's columns (alpha .. shaded_per_pixel); empty for the baselines but subset_lights; the
+// lightcuts' samples n in shadow_samples and their m in interleave.
 std::vector<std::string> pointCells(const Measurement& m) {
-  if (!m.lgh()) return {"", "", "", "", "", std::to_string(m.subsetLights), "", "", "", ""};
   const PointSpec& p = m.point;
+  if (m.lightcuts())
+    return {"", "", std::to_string(p.interleave), std::to_string(p.k), p.filter ? "on" : "off", "", "", "", "", ""};
+  if (!m.lgh()) return {"", "", "", "", "", std::to_string(m.subsetLights), "", "", "", ""};
   return {num(p.alpha),
           std::to_string(p.startLevel),
           std::to_string(p.interleave),
@@ -150,8 +153,11 @@ std::vector<std::string> csvCells(const Case& c, const Measurement& m) {
         c.scaling ? "" : std::to_string(c.reference.pixels),
         num(std::round(m.othersCpu * 100) / 100),
         m.image,
-        m.lgh() ? std::to_string(m.point.frames) : "",
-        num(median(m.rmseExactRatio))})
+        m.gridPoint() ? std::to_string(m.point.frames) : "",
+        num(median(m.rmseExactRatio)),
+        m.lightcuts() ? std::to_string(m.point.block) : "",
+        m.lightcuts() ? num(m.passMedian(passes::kLightcutCuts)) : "",
+        m.lightcuts() ? num(m.passMedian(passes::kLightcutSampling)) : ""})
     cells.push_back(std::move(cell));
   return cells;
 }
@@ -185,6 +191,9 @@ json definitionsJson() {
            "uniform_shadowed: compute brute force with one ray per subset light and pixel; brute_force_ratio and "
            "uniform_ratio: the rasterized brute-force light pass over all / about M lights (a fresh set: VPL budget "
            "and emitter samples scaled by M/N) with the frame's shadow rays and filter"},
+          {"rtslc",
+           "stochastic lightcuts (--indirect-method rtslc): time_ms = light tree build + cuts + sampling + "
+           "irradiance filter; shadow_samples = its samples per pixel n, interleave = m, rtslc_block = B"},
           {"time_unshadowed_ms",
            "unshadowed estimate: LGH build + split + light pass + resolve; brute_force and uniform: "
            "the rasterized brute-force light pass (every light full-screen)"},
@@ -210,7 +219,8 @@ json measurementJson(const Measurement& m, const json& baseSettings) {
   for (const auto& [name, value] : own.items())
     if (baseSettings[name] != value) settings[name] = value;
   jm["settings"] = settings;
-  if (!m.lgh()) jm["subset_lights"] = m.subsetLights;
+  if (!m.gridPoint()) jm["subset_lights"] = m.subsetLights;
+  if (m.lightcuts()) jm["tree_build_ms"] = significant(m.buildMs);
   jm["vpl_target"] = m.vplTarget;
   jm["vpls"] = m.vpls;
   jm["extrapolated"] = m.extrapolated;
@@ -256,6 +266,7 @@ json caseJson(const Case& c) {
     jc["levels"] = c.levels;
     jc["clamp_distance"] = c.clampDistance;
     jc["build_ms"] = significant(c.buildMs);
+    if (!c.treeBuildMs.empty()) jc["tree_build_ms"] = significant(c.treeBuildMs);
     const ReferenceInfo& r = c.reference;
     jc["reference"] = {{"pixels", r.pixels},
                        {"image_pixels", r.imagePixels},

@@ -133,16 +133,38 @@ std::vector<double> SweepRunner::measureBuild(const Renderer& renderer) {
   return samples;
 }
 
+std::vector<double> SweepRunner::measureTreeBuild(const Renderer& renderer) {
+  // As measureBuild: the tree over the renderer's S0 built again, what a frame whose lights move pays.
+  std::vector<double> samples;
+  GpuLightTree tree;
+  const InputLights& in = renderer.inputLights();
+  treePass_.execute(in.lights, in.count, tree);  // warm-up: the shaders compile at their first dispatch
+  for (int r = 0; r < options_.repeats; ++r) {
+    double ms = 0;
+    sampler_.sample([&] { ms = timedMs([&] { treePass_.execute(in.lights, in.count, tree); }); });
+    samples.push_back(ms);
+  }
+  return samples;
+}
+
 // Compiles every shader variant the points use before anything is timed.
 void SweepRunner::compileVariants(BenchRenderer& bench, const RenderSettings& base) {
   std::set<std::pair<int, bool>> variants;
-  for (const PointSpec& p : points_) variants.insert({p.startLevel, p.k > 0});
+  for (const PointSpec& p : points_) {
+    if (p.lightcuts) continue;
+    variants.insert({p.startLevel, p.k > 0});
+  }
   for (const auto& [start, shadows] : variants) {
     RenderSettings s = base;
     s.lightPass.startLevel = start;
     s.shadows.samples = shadows ? 4 : 0;
     bench.render(s);
   }
+  for (const PointSpec& p : points_)
+    if (p.lightcuts) {
+      bench.render(p.applied(base));
+      break;
+    }
 }
 
 Measurement SweepRunner::measureLgh(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point,
@@ -177,6 +199,34 @@ Measurement SweepRunner::measureLgh(BenchRenderer& bench, const RenderSettings& 
     }
     if (r == options_.repeats - 1 && images)
       images->write(m, fileLabel(point), irradiance, point.k > 0 ? &visibility : nullptr);
+  }
+  return m;
+}
+
+// A point of the stochastic lightcuts: time = its tree build (measureTreeBuild, as the LGH's points count
+// the LGH build) + cuts + sampling + irradiance filter; error = its shadowed irradiance (filtered when the
+// point says so) against the reference.
+Measurement SweepRunner::measureLightcuts(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point,
+                                          double treeBuildMs, const reference::ReferenceImage* ref,
+                                          const CaseImages* images) {
+  Measurement m;
+  m.method = methods::kRtslc;
+  m.point = point;
+  const RenderSettings s = point.applied(base);
+  m.settings = s;
+  m.buildMs = treeBuildMs;
+  m.lights = bench.render(s).lights;  // warm-up (and the tree, when the last point was the LGH's)
+  for (int r = 0; r < options_.repeats; ++r) {
+    const FrameStats stats = timedFrame(bench, m, point.frames);
+    if (stats.nonFinitePixels > 0)
+      fail(std::to_string(stats.nonFinitePixels) + " NaN/Inf pixels at rtslc " + settingsLabel(point));
+    m.addPassTimes(stats);
+    m.timeMs.push_back(treeBuildMs + lightcutsMs(stats));
+    m.frameMs.push_back(treeBuildMs + stats.totalMs());
+    if (!ref) continue;
+    const ImageRGBA irradiance = bench.renderer().readImage(Aov::Irradiance);  // shadowed already
+    if (!ref->shadowed.empty()) m.addShadowedError(shadowedError(*ref, irradiance, nullptr));
+    if (r == options_.repeats - 1 && images) images->write(m, fileLabel(point), irradiance, nullptr);
   }
   return m;
 }
@@ -432,10 +482,15 @@ Case SweepRunner::runCase(const SceneGpu& gpu, const reference::OcclusionScene& 
 
   c.buildMs = measureBuild(renderer);
   const double buildMs = spreadOf(c.buildMs).median;
+  if (std::any_of(points_.begin(), points_.end(), [](const PointSpec& p) { return p.lightcuts; }))
+    c.treeBuildMs = measureTreeBuild(renderer);
+  const double treeBuildMs = c.treeBuildMs.empty() ? kNaN : spreadOf(c.treeBuildMs).median;
   tick();
   compileVariants(bench, base);
   for (const PointSpec& point : points_) {
-    Measurement m = measureLgh(bench, base, point, buildMs, &ref, writeImages ? &images : nullptr);
+    const CaseImages* pointImages = writeImages ? &images : nullptr;
+    Measurement m = point.lightcuts ? measureLightcuts(bench, base, point, treeBuildMs, &ref, pointImages)
+                                    : measureLgh(bench, base, point, buildMs, &ref, pointImages);
     m.series = "grid";
     c.measurements.push_back(std::move(m));
     tick();

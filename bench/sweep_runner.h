@@ -18,6 +18,7 @@
 #include "bench/sweep_case.h"
 #include "render/passes/brute_force_pass.h"
 #include "render/passes/lgh_build_pass.h"
+#include "render/passes/light_tree_pass.h"
 #include "render/passes/light_volume_pass.h"
 
 namespace lgh::bench {
@@ -49,9 +50,12 @@ class SweepRunner {
 
   RenderSettings baseSettings(const SceneSpec& spec) const;
   std::vector<double> measureBuild(const Renderer& renderer);
+  std::vector<double> measureTreeBuild(const Renderer& renderer);  // the lightcuts' light tree, as measureBuild
   void compileVariants(BenchRenderer& bench, const RenderSettings& base);
   Measurement measureLgh(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point, double buildMs,
                          const reference::ReferenceImage* ref, const CaseImages* images);
+  Measurement measureLightcuts(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point,
+                               double treeBuildMs, const reference::ReferenceImage* ref, const CaseImages* images);
   Measurement measureBruteForce(BenchRenderer& bench, const RenderSettings& base, size_t lights,
                                 const reference::ReferenceImage* ref, const char* series);
   // One timed frame with the renderer's settings, after frames - 1 untimed ones accumulated from a
@@ -71,6 +75,7 @@ class SweepRunner {
   LghBuildPass buildPass_;
   LightVolumePass lightPass_;
   BruteForcePass bruteForce_;
+  LightTreePass treePass_;
 };
 
 }  // namespace lgh::bench
