@@ -9,6 +9,7 @@
 #include "bench/bench_setup.h"
 #include "bench/stats.h"
 #include "bench/table.h"
+#include "render/passes/light_tree_pass.h"
 #include "render/renderer.h"
 
 namespace lgh::bench {
@@ -46,6 +47,11 @@ CLI::App* addFrameCommand(CLI::App& app, FrameBenchOptions& options) {
   command
       ->add_option("--compare-targets", options.compareTargets,
                    "also time the shadow rays aimed as in the paper (row 'shadow rays (paper's targets)')")
+      ->capture_default_str();
+  command
+      ->add_option("--lightcut-samples", options.lightcutSamples,
+                   "also time the stochastic lightcuts' frame at this many samples per pixel (0: not)")
+      ->check(CLI::Range(0, int(gpu::kMaxCutNodes)))
       ->capture_default_str();
   command->add_option("--csv", options.csvPath, "also write the per-pass medians as CSV");
   return command;
@@ -152,6 +158,90 @@ void printFrames(RenderBench& bench, const RenderSettings& settings, const Frame
   table.print(stdout);
 }
 
+// The stochastic lightcuts on the same lights: the tree build step by step (LightTreePass's profiler scopes
+// over the renderer's S0), and whole frames with cuts shared by 8x8 blocks and per pixel (B = 1), new VPLs
+// every frame as above (the tree is rebuilt in the frame).
+const std::vector<std::string> kTreeSteps{"bounds", "Morton codes", "sort", "leaves", "internal levels"};
+const std::vector<std::string> kLightcutPasses{passes::kLightTreeBuild, passes::kLightcutCuts,
+                                               passes::kLightcutSampling, passes::kIrradianceFilter};
+constexpr int kLightcutBlocks[] = {8, 1};
+
+struct LightcutTimes {
+  std::map<std::string, std::vector<double>> treeStepMs;
+  std::map<int, std::map<std::string, std::vector<double>>> passMs;  // [block][pass]
+  std::map<int, std::vector<double>> totalMs;
+  bool nonFinite = false;
+};
+
+LightcutTimes measureLightcuts(RenderBench& bench, const RenderSettings& settings, const FrameBenchOptions& options) {
+  LightcutTimes t;
+  RenderSettings s = settings;
+  s.indirectMethod = "rtslc";
+  s.rtslc.samples = options.lightcutSamples;
+  bench.renderer().render(s);  // warm-up: S0 as the LGH frames' first, the shaders compiled
+  {
+    const InputLights& lights = bench.renderer().renderer().inputLights();
+    LightTreePass pass;
+    GpuLightTree tree;
+    gl::Profiler profiler(true);
+    pass.execute(lights.lights, lights.count, tree, &profiler);
+    profiler.collect();
+    for (int r = 0; r < options.repeats; ++r) {
+      pass.execute(lights.lights, lights.count, tree, &profiler);
+      for (const gl::PassTiming& step : profiler.collect()) t.treeStepMs[step.name].push_back(step.wallMs);
+    }
+  }
+  int seed = settings.inputLights.seed;
+  for (int block : kLightcutBlocks) {
+    s.rtslc.blockSize = block;
+    bench.renderer().render(s);
+    for (int r = 0; r < options.repeats; ++r) {
+      s.inputLights.seed = ++seed;  // new lights every frame, also from one block size to the next
+      const FrameStats stats = bench.renderer().render(s);
+      t.nonFinite |= stats.nonFinitePixels > 0;
+      for (const std::string& pass : kLightcutPasses) t.passMs[block][pass].push_back(stats.passMs(pass));
+      t.totalMs[block].push_back(stats.totalMs());
+    }
+  }
+  std::fprintf(stderr, "  lightcuts done\n");
+  return t;
+}
+
+void printLightcuts(const RenderSettings& settings, const FrameBenchOptions& options, const FrameTimes& lgh,
+                    LightcutTimes& t) {
+  const double pixels = double(settings.image.width) * double(settings.image.height);
+  std::printf(
+      "\nstochastic lightcuts on the same lights: n = %d samples per pixel (%s shadow rays per frame), tree "
+      "build step by step ([LY20] Table 1) and the frame with cuts shared by 8x8 blocks and per pixel\n\n",
+      options.lightcutSamples, formatCount(size_t(pixels) * size_t(options.lightcutSamples)).c_str());
+  TextTable tree({"tree build step", "ms", "share"});
+  double total = 0;
+  for (const std::string& step : kTreeSteps) total += spreadOf(t.treeStepMs[step]).median;
+  for (const std::string& step : kTreeSteps) {
+    const double ms = spreadOf(t.treeStepMs[step]).median;
+    char share[16];
+    std::snprintf(share, sizeof share, "%.0f%%", 100.0 * ms / std::max(total, 1e-30));
+    tree.addRow({step, formatMs(ms), share});
+  }
+  const auto lghBuild = lgh.passMs.find(1);
+  const double lghBuildMs =
+      lghBuild != lgh.passMs.end() ? spreadOf(lghBuild->second.at(passes::kLghBuild)).median : 0.0;
+  tree.addRow({"tree build", formatMs(total), ""});
+  if (lghBuildMs > 0) tree.addRow({"LGH build (above, 1x1) / tree build", formatRatio(lghBuildMs / total), ""});
+  tree.print(stdout);
+  std::printf("\n");
+  TextTable frame({"pass", "8x8 cuts", "per-pixel cuts"});
+  for (const std::string& pass : kLightcutPasses)
+    frame.addRow({pass, formatMs(spreadOf(t.passMs[8][pass]).median), formatMs(spreadOf(t.passMs[1][pass]).median)});
+  std::vector<std::string> share{"cuts / sampling"};
+  for (int block : kLightcutBlocks)
+    share.push_back(formatRatio(spreadOf(t.passMs[block][passes::kLightcutCuts]).median /
+                                std::max(spreadOf(t.passMs[block][passes::kLightcutSampling]).median, 1e-30)));
+  frame.addRow(share);
+  frame.addRow({"total", formatSpread(spreadOf(t.totalMs[8])), formatSpread(spreadOf(t.totalMs[1]))});
+  frame.print(stdout);
+}
+
 void writeCsv(const std::string& path, const FrameBenchOptions& options, FrameTimes& t) {
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error(path + ": cannot open for writing");
@@ -177,7 +267,13 @@ int runFrameBench(const FrameBenchOptions& options) {
   FrameTimes times = measureFrames(bench, settings, options);
   printFrames(bench, settings, options, times);
   if (!options.csvPath.empty()) writeCsv(options.csvPath, options, times);
-  return times.nonFinite ? 1 : 0;
+  bool nonFinite = times.nonFinite;
+  if (options.lightcutSamples > 0) {
+    LightcutTimes lightcuts = measureLightcuts(bench, settings, options);
+    printLightcuts(settings, options, times, lightcuts);
+    nonFinite |= lightcuts.nonFinite;
+  }
+  return nonFinite ? 1 : 0;
 }
 
 }  // namespace lgh::bench
