@@ -52,6 +52,10 @@ layout(binding = LGH_TEXTURE_FILTER_SECOND) uniform sampler2D
 layout(rgba32f, binding = LGH_IMAGE_FILTER_OUT) uniform writeonly image2D signalOut;
 layout(std140, binding = LGH_UBO_PASS) uniform ShadowFilter { ShadowFilterUniforms atrous; };
 
+// A weight U D below this has no ratio: llvmpipe flushes denormals in arithmetic but not in comparisons, so
+// a denormal U D > 0 could still divide 0 by 0.
+const float kNoWeight = 1e-30;
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = ivec2(frame.resolution.xy);
@@ -67,14 +71,16 @@ void main() {
   if (atrous.stage == kFilterFinish) {
     // S <= U D tap by tap (a ratio is at most 1), so S / (U D) stays in [0, 1] however small U D is; only
     // U D = 0 (no light, or every sample weighed 0) has no quotient.
-    float ratio = clamp(centre.g > 0.0 ? centre.r / centre.g : raw.r, 0.0, 1.0);
+    float ratio = clamp(centre.g > kNoWeight ? centre.r / centre.g : raw.r, 0.0, 1.0);
     float meanWeight = centre.b > 0.0 ? centre.g / centre.b : 1.0;  // U = 0: nothing to correct
     // The correction trusts the mean weight as far as it is more certain than the LGH's irradiance:
     // f^2 / (f^2 + var D), var D = var(U D) / U^2 (U is exact: the irradiance the samples were drawn against).
     float varianceOfD = centre.b > 0.0 ? centre.a / (centre.b * centre.b) : 0.0;
     float prior = atrous.lghError * atrous.lghError;
-    float trust = prior > 0.0 ? prior / (prior + varianceOfD) : 0.0;
-    float correction = 1.0 + trust * (meanWeight - 1.0);
+    // Where the LGH's irradiance is all but 0 and the samples' T is not, U underflows against U D: D and its
+    // variance have no finite value (inf, or 0 / 0), and nothing is trusted (the irradiance corrected is ~0).
+    float trust = prior > 0.0 && varianceOfD < 3.0e38 ? prior / (prior + varianceOfD) : 0.0;
+    float correction = trust > 0.0 ? 1.0 + trust * (meanWeight - 1.0) : 1.0;
     float visibility = atrous.correctIrradiance != 0u ? ratio * correction : ratio;
     imageStore(signalOut, pixel, vec4(visibility, ratio, meanWeight, 1.0));
     return;
@@ -133,7 +139,7 @@ void main() {
   const float kernel[3] = float[](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
   float footprint =
       max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30) * float(atrous.stepSize);
-  float centreRatio = centre.g > 0.0 ? centre.r / centre.g : raw.r;
+  float centreRatio = centre.g > kNoWeight ? centre.r / centre.g : raw.r;
   float sigma = atrous.ratioSigma * pow(frames, -atrous.sigmaFade);
   vec3 sum = vec3(0.0);
   float weightSum = 0.0, varianceSum = 0.0;
@@ -144,7 +150,7 @@ void main() {
       vec4 qPosition = texelFetch(gPosition, q, 0);
       if (qPosition.w == 0.0) continue;
       vec4 v = texelFetch(signalIn, q, 0);
-      float qRatio = v.g > 0.0 ? v.r / v.g : centreRatio;  // a tap without a ratio stops nothing
+      float qRatio = v.g > kNoWeight ? v.r / v.g : centreRatio;  // a tap without a ratio stops nothing
       float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * atrous.planeSigma);
       float dr = atrous.stepSize > 1 ? (qRatio - centreRatio) / sigma : 0.0;
       float w = kernel[abs(dx)] * kernel[abs(dy)] *

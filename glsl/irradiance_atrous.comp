@@ -45,7 +45,9 @@ void main() {
       vec3 v = texelFetch(signalIn, q, 0).rgb;
       float l = luminance(v), largest = max(l, centreLuminance);
       float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * filtering.planeSigma);
-      float dl = filtering.stepSize > 1 && largest > 0.0 ? (l - centreLuminance) / (largest * sigma) : 0.0;
+      // Not between two all but black taps: llvmpipe flushes denormals in arithmetic but not in comparisons,
+      // so largest > 0 could still divide 0 by 0.
+      float dl = filtering.stepSize > 1 && largest > 1e-30 ? (l - centreLuminance) / (largest * sigma) : 0.0;
       float w = kernel[abs(dx)] * kernel[abs(dy)] *
                 pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), filtering.normalPower) *
                 exp(-0.5 * (plane * plane + dl * dl));
