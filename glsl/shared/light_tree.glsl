@@ -73,11 +73,17 @@ float cutErrorBound(uint node, uint leafCount, vec3 x, vec3 n, float minDistance
 // dead branch. A fresh uniform per level (the authors rescale one uniform down the tree, which spends its
 // mantissa over 17-21 levels): the same distribution. A leaf may be dark (a padding leaf under a lit node
 // is never drawn: its probability is 0).
+// The uniforms are multiples of 2^-24 (nextFloat): a child whose probability is below that would still be
+// drawn 2^-24 of the time and weighed by 1 / p, an infinite sample (seen: 816 NaN pixels in a filtered Sponza
+// frame). So a probability strictly between 0 and 1 is rounded to the uniforms' resolution, at least one
+// step from 0 and 1: the probability a descent reports is then exactly the one it was drawn with.
 uint descendToLeaf(uint node, uint leafCount, vec3 x, vec3 n, inout Rng rng, out float probability) {
+  const float kSteps = 16777216.0;  // 2^24
   probability = 1.0;
   while (node < leafCount) {
     float first;
     if (!firstChildProbability(node, x, n, first)) return 0u;
+    if (first > 0.0 && first < 1.0) first = clamp(round(first * kSteps), 1.0, kSteps - 1.0) / kSteps;
     bool takeFirst = nextFloat(rng) < first;
     probability *= takeFirst ? first : 1.0 - first;
     node = 2u * node + (takeFirst ? 0u : 1u);

@@ -87,7 +87,9 @@ TEST_F(LightcutsTest, DescentsFollowTheReferenceProbabilities) {
       const size_t leaf = reached[i] - firstLeaf;
       ASSERT_LT(leaf, expected.size());
       counts[leaf] += 1;
-      ASSERT_NEAR(reported[i], expected[leaf], 1e-4 * expected[leaf] + 1e-12) << "leaf " << reached[i];
+      // Each level's probability is rounded to the uniforms' 2^-24 steps (light_tree.glsl): within 1e-3 for
+      // the levels' probabilities of the leaves drawn here (>= 1e-4 each).
+      ASSERT_NEAR(reported[i], expected[leaf], 1e-3 * expected[leaf] + 1e-12) << "leaf " << reached[i];
     }
     double live = 0;
     for (double p : expected) live += p;
