@@ -73,6 +73,8 @@ std::vector<PointSpec> lightcutPoints(const std::vector<int>& samples, const std
       for (int n : samples)
         for (bool f : filters)
           for (int count : frames) {
+            // The cut holds n m^2 nodes, at most gpu::kMaxCutNodes, and an m x m group lies in one block.
+            if (n * m * m > int(gpu::kMaxCutNodes) || b % m != 0) continue;
             PointSpec p;
             p.lightcuts = true;
             p.block = b;

@@ -33,7 +33,8 @@ std::vector<PointSpec> grid(const std::vector<float>& alphas, const std::vector<
 // The published sweep (docs/measurements.md): alpha x start level x interleaving (1, 4), without shadows (k = 0) and
 // with k = 4 and the filter; then one parameter at a time around the defaults (alpha 1, S1, 1x1, k 4).
 std::vector<PointSpec> readmePoints();
-// The lightcuts' grid: samples n x block B x interleave m x filter x frames.
+// The lightcuts' grid: samples n x block B x interleave m x filter x frames, but for the combinations the
+// method does not take (n m^2 > 32 cut nodes, B not a multiple of m).
 std::vector<PointSpec> lightcutPoints(const std::vector<int>& samples, const std::vector<int>& blocks,
                                       const std::vector<int>& interleaves, const std::vector<bool>& filters,
                                       const std::vector<int>& frames);

@@ -7,11 +7,11 @@
 //   sampling  one invocation per pixel: for each of its cut nodes one descent to a leaf by Eq. 1-2's child
 //             probabilities at this pixel, the leaf's light shaded as the LGH shades S0 (lgh_shading.glsl,
 //             same clamp) and one shadow ray to it (same origin offset and ray end as shadow_rays.comp),
-//             f / p summed; with m x m interleaving (§3.4, Eq. 3) the pixel takes its share of the cut's
-//             nodes, rotated every frame, times m^2
+//             f / p summed; with m x m interleaving (§3.4, Eq. 3) the cut has n m^2 nodes and each pixel
+//             of an m x m group takes n of them, rotated every frame, times m^2
 // The cut partitions the lights (a stratification), so the sum is an unbiased estimate of the exact
-// shadowed irradiance (Yuksel 2020, §5), a dead branch counting as a zero sample; the same samples without
-// their rays estimate the unshadowed irradiance.
+// shadowed irradiance (Yuksel 2020, §5), a dead branch counting as a zero sample (with interleaving, every
+// m^2 frames are).
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/bindings.h"
 #include "shared/bvh_traverse.glsl"
@@ -30,7 +30,6 @@ layout(std430, binding = LGH_BINDING_PASS1) readonly buffer Nodes { GpuLightTree
 layout(std430, binding = LGH_BINDING_PASS2) readonly buffer Bounds { LghBoundsResult bounds; };
 layout(std430, binding = LGH_BINDING_PASS3) buffer Cuts { uint cuts[]; };  // kMaxCutNodes per block, kNoCutNode: unused
 layout(rgba32f, binding = LGH_IMAGE_RTSLC_SHADOWED) uniform writeonly image2D shadowedOut;
-layout(rgba32f, binding = LGH_IMAGE_RTSLC_UNSHADOWED) uniform writeonly image2D unshadowedOut;
 #include "shared/light_tree.glsl"
 
 layout(std140, binding = LGH_UBO_PASS) uniform Rtslc { RtslcUniforms rtslc; };
@@ -79,7 +78,7 @@ void selectCut(uvec2 block, ivec2 size) {
 
 void sampleLights(ivec2 pixel) {
   Surface s = loadSurface(pixel);
-  vec3 shadowed = vec3(0.0), unshadowed = vec3(0.0);
+  vec3 shadowed = vec3(0.0);
   if (s.valid && rtslc.leafCount > 0u) {
     uvec2 block = uvec2(pixel) / rtslc.blockSize;
     uint base = (block.y * rtslc.blocksPerRow + block.x) * kMaxCutNodes;
@@ -94,7 +93,9 @@ void sampleLights(ivec2 pixel) {
     for (uint i = first; i < last; ++i) {
       float probability;
       uint leaf = descendToLeaf(cuts[base + i], rtslc.leafCount, s.position, s.normal, rng, probability);
-      if (leaf == 0u || !(probability > 0.0)) continue;  // a dead branch: a zero sample
+      // A dead branch: a zero sample. (A path's probability below the smallest normal float is drawn about
+      // that rarely, and 1 / p of a denormal is infinite on llvmpipe, which flushes it.)
+      if (leaf == 0u || !(probability >= 1.17549435e-38)) continue;
       uint light = nodes[leaf].lightIndex;
       if (light == kTreeNoLight) continue;  // padding: a cut of dark lights only
       ShadedLight l = decodeInputLight(inputLights[light]);
@@ -102,7 +103,6 @@ void sampleLights(ivec2 pixel) {
                                  rtslc.clampDistance) /
                probability;
       if (f == vec3(0.0)) continue;
-      unshadowed += f;
       // Stop short of the light by a relative margin, as shadow_rays.comp: VPLs sit on surfaces.
       vec3 toLight = l.position - origin;
       float rayLength = length(toLight);
@@ -110,10 +110,8 @@ void sampleLights(ivec2 pixel) {
       if (!blocked) shadowed += f;
     }
     shadowed *= float(groupSize);
-    unshadowed *= float(groupSize);
   }
   imageStore(shadowedOut, pixel, vec4(shadowed, 1.0));
-  imageStore(unshadowedOut, pixel, vec4(unshadowed, 1.0));
 }
 
 void main() {

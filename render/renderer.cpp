@@ -119,7 +119,6 @@ void Renderer::allocateTargets() {
   sampledIrradiance_.clear(glm::vec4(0.0f));
   visibility_ = gl::Texture2D(w, h, GL_RGBA32F);
   visibility_.clear(glm::vec4(1.0f));
-  lightcutsUnshadowed_ = gl::Texture2D(w, h, GL_RGBA32F);
   filteredIrradiance_ = gl::Texture2D(w, h, GL_RGBA32F);
   indirect_ = gl::Texture2D(w, h, GL_RGBA32F);
   final_ = gl::Texture2D(w, h, GL_RGBA32F);
@@ -233,9 +232,9 @@ FrameStats Renderer::render(const CameraView& view) {
     const RtslcInputs in{scene_, gbuffer_, inputLights_.lights, lightTree_};
     const RtslcOptions options = rtslcOptions();
     timed(passes::kLightcutCuts, [&] { rtslcPass_.selectCuts(in, options); });
-    timed(passes::kLightcutSampling, [&] { rtslcPass_.sample(in, options, {irradiance_, lightcutsUnshadowed_}); });
-    // Temporal accumulation of the estimate, as the LGH's irradiance is accumulated (each frame is unbiased:
-    // nothing to correct).
+    timed(passes::kLightcutSampling, [&] { rtslcPass_.sample(in, options, {irradiance_}); });
+    // Temporal accumulation of the estimate, as the LGH's irradiance is accumulated (each frame is unbiased,
+    // or with interleaving every m^2 frames: nothing to correct).
     if (accumulating())
       timed(passes::kAccumulation, [&] {
         const TileLayout layout = TileLayout::of(1, settings_.image.width, settings_.image.height);

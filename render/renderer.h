@@ -52,7 +52,8 @@ inline constexpr const char* kIrradianceFilter = "irradiance filter";
 }  // namespace passes
 
 // Images a frame can hand back (AOVs).
-//   indirect    radiance through the LGH, unshadowed (albedo / pi x irradiance)
+//   indirect    radiance through the LGH, unshadowed (albedo / pi x irradiance); with the lightcuts, shadowed
+//               (ratio, visibility and overdraw are the LGH's: with the lightcuts they hold nothing new)
 //   overdraw    heat map of fragments rasterized per pixel in the light pass (needs settings.overdraw)
 //   irradiance  the light pass's irradiance (before albedo), accumulated over the frames the history holds;
 //               with the lightcuts their shadowed irradiance, accumulated and filtered
@@ -191,17 +192,16 @@ class Renderer {
   // Targets the passes hand to each other.
   GBuffer gbuffer_;
   gl::Texture2D direct_;
-  Tiles tiles_;                        // interleaved surfaces and light-pass targets (n > 1)
-  gl::Texture2D irradiance_;           // LGH irradiance, full resolution
-  gl::Texture2D fragmentCounts_;       // R32UI, light-pass fragments per pixel (settings.overdraw)
-  ShadowSlots shadowSlots_;            // k selected lights per light-pass pixel
-  ShadowTargets shadowTargets_;        // input lights drawn per grid light as the rays' targets
-  gl::Texture2D rawRatio_;             // r: visibility ratio from the shadow rays (accumulated; a: frames)
-  gl::Texture2D sampledIrradiance_;    // R32F: the irradiance luminance the shadow samples were drawn against
-  gl::Texture2D visibility_;           // r: filtered ratio
-  gl::Texture2D lightcutsUnshadowed_;  // the lightcuts' samples without their shadow rays
-  gl::Texture2D filteredIrradiance_;   // the lightcuts' irradiance, filtered
-  gl::Texture2D indirect_;             // albedo / pi x irradiance, unshadowed
+  Tiles tiles_;                       // interleaved surfaces and light-pass targets (n > 1)
+  gl::Texture2D irradiance_;          // LGH irradiance, full resolution
+  gl::Texture2D fragmentCounts_;      // R32UI, light-pass fragments per pixel (settings.overdraw)
+  ShadowSlots shadowSlots_;           // k selected lights per light-pass pixel
+  ShadowTargets shadowTargets_;       // input lights drawn per grid light as the rays' targets
+  gl::Texture2D rawRatio_;            // r: visibility ratio from the shadow rays (accumulated; a: frames)
+  gl::Texture2D sampledIrradiance_;   // R32F: the irradiance luminance the shadow samples were drawn against
+  gl::Texture2D visibility_;          // r: filtered ratio
+  gl::Texture2D filteredIrradiance_;  // the lightcuts' irradiance, filtered
+  gl::Texture2D indirect_;            // albedo / pi x irradiance, unshadowed
   gl::Texture2D final_;
 };
 

@@ -99,9 +99,9 @@ struct AccumulationSettings {
 // The peer method, real-time stochastic lightcuts (RtslcPass; docs/design.md §12): indirect light from the
 // same S0 through a light tree instead of the LGH, shadowed sample by sample.
 struct RtslcSettings {
-  int samples = 8;            // n: cut nodes per block, one light sample each per pixel (the paper's default)
+  int samples = 8;            // n: light samples (and shadow rays) per pixel: a cut of n m^2 nodes (the paper's spp)
   int blockSize = 8;          // B: pixels per side of the blocks that share a cut (1: per-pixel cuts)
-  int interleave = 1;         // m: an m x m group of pixels splits each cut (1, 2, 4)
+  int interleave = 1;         // m: an m x m group of pixels splits each cut of n m^2 nodes (1, 2, 4)
   float errorLimit = 0.001f;  // the cut's distance floor, as a share of the lights' box diagonal
 };
 
@@ -261,11 +261,12 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(filter.ratioSigma,
         SettingInfo{"filter-ratio-sigma", "a-trous ratio-difference sigma", 0.001, 100}.keepingHistory());
   auto& rtslc = s.rtslc;
-  visit(rtslc.samples,
-        SettingInfo{"rtslc-samples", "lightcuts: cut nodes, one light sample each per pixel", 1, gpu::kMaxCutNodes});
+  visit(rtslc.samples, SettingInfo{"rtslc-samples", "lightcuts: light samples per pixel n (a cut of n m^2 <= 32 nodes)",
+                                   1, gpu::kMaxCutNodes});
   visit(rtslc.blockSize, SettingInfo{"rtslc-block", "lightcuts: pixels per side sharing a cut (1: per pixel)", 1, 64});
   visit(rtslc.interleave,
-        SettingInfo{"rtslc-interleave", "lightcuts: m x m pixels split each cut's nodes (1, 2, 4)", 1, 4});
+        SettingInfo{"rtslc-interleave", "lightcuts: m x m pixels split each cut's nodes (1, 2, 4; divides the block)",
+                    1, 4});
   visit(rtslc.errorLimit,
         SettingInfo{"rtslc-error-limit", "lightcuts: the cut's distance floor, share of the lights' extent", 0, 1});
   auto& accumulation = s.accumulation;

@@ -66,7 +66,6 @@
 #define LGH_IMAGE_SHADOW_SAMPLED_IRRADIANCE 1  // shadow rays: the irradiance T is compared with
 #define LGH_IMAGE_FILTER_OUT 0                 // a-trous
 #define LGH_IMAGE_RTSLC_SHADOWED 0             // lightcuts: the shadowed irradiance estimate
-#define LGH_IMAGE_RTSLC_UNSHADOWED 1           // lightcuts: the same samples without their rays
 #define LGH_IMAGE_COMPOSITE_FINAL 0
 #define LGH_IMAGE_COMPOSITE_INDIRECT 1
 #define LGH_IMAGE_ACCUM_IRRADIANCE 0      // accumulation: in this frame's irradiance, out the accumulated

@@ -54,7 +54,13 @@ bool firstChildProbability(uint node, vec3 x, vec3 n, out float probability) {
   float closest = min0 == 0.0 && min1 == 0.0 ? a0 / (a0 + a1) : firstOfTwo(min0, min1, a0, a1);
   float farthest = firstOfTwo(farthestDistanceSq(x, c0.boundMin, c0.boundMax),
                               farthestDistanceSq(x, c1.boundMin, c1.boundMax), a0, a1);
-  probability = 0.5 * (closest + farthest);
+  // The uniforms are multiples of 2^-24 (nextFloat): a child whose probability is below that would still be
+  // drawn 2^-24 of the time and weighed by 1 / p, an infinite sample (seen: 816 NaN pixels in a filtered
+  // Sponza frame), and one that rounds to 0 would never be drawn although it can light x. So the
+  // probability is rounded to the uniforms' steps, at least one step from 0 and 1: the probability a
+  // descent reports is then exactly the one it was drawn with, and both children stay reachable.
+  const float kSteps = 16777216.0;  // 2^24
+  probability = clamp(round(0.5 * (closest + farthest) * kSteps), 1.0, kSteps - 1.0) / kSteps;
   return true;
 }
 
@@ -65,7 +71,7 @@ float cutErrorBound(uint node, uint leafCount, vec3 x, vec3 n, float minDistance
   GpuLightTreeNode c = nodes[node];
   if (c.intensity == 0.0) return 0.0;
   float f = cosineBound(x, n, c.boundMin, c.boundMax);
-  if (f == 0.0) return 0.0;  // also where x lies in the box and there is no floor: 0, not 0 / 0
+  if (f == 0.0) return 0.0;  // behind the tangent plane (and 0, not 0 / 0, where x is in the box without a floor)
   return c.intensity * f / max(closestDistanceSq(x, c.boundMin, c.boundMax), minDistance * minDistance);
 }
 
@@ -73,17 +79,11 @@ float cutErrorBound(uint node, uint leafCount, vec3 x, vec3 n, float minDistance
 // dead branch. A fresh uniform per level (the authors rescale one uniform down the tree, which spends its
 // mantissa over 17-21 levels): the same distribution. A leaf may be dark (a padding leaf under a lit node
 // is never drawn: its probability is 0).
-// The uniforms are multiples of 2^-24 (nextFloat): a child whose probability is below that would still be
-// drawn 2^-24 of the time and weighed by 1 / p, an infinite sample (seen: 816 NaN pixels in a filtered Sponza
-// frame). So a probability strictly between 0 and 1 is rounded to the uniforms' resolution, at least one
-// step from 0 and 1: the probability a descent reports is then exactly the one it was drawn with.
 uint descendToLeaf(uint node, uint leafCount, vec3 x, vec3 n, inout Rng rng, out float probability) {
-  const float kSteps = 16777216.0;  // 2^24
   probability = 1.0;
   while (node < leafCount) {
     float first;
     if (!firstChildProbability(node, x, n, first)) return 0u;
-    if (first > 0.0 && first < 1.0) first = clamp(round(first * kSteps), 1.0, kSteps - 1.0) / kSteps;
     bool takeFirst = nextFloat(rng) < first;
     probability *= takeFirst ? first : 1.0 - first;
     node = 2u * node + (takeFirst ? 0u : 1u);

@@ -17,6 +17,7 @@ void IrradianceFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& 
                                    const IrradianceFilterOptions& options, gl::Texture2D& filtered) {
   const ShadowFilterSettings& filter = options.filter;
   if (filter.passes <= 0) {
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // the copy reads what image stores wrote
     glCopyImageSubData(irradiance.id(), GL_TEXTURE_2D, 0, 0, 0, 0, filtered.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
                        gbuffer.width, gbuffer.height, 1);
     gl::checkErrors("irradiance filter (copy)");

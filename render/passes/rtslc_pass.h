@@ -2,7 +2,7 @@
 // Real-time stochastic lightcuts (Lin & Yuksel 2020; glsl/rtslc.comp, docs/design.md §12), the peer
 // method of the LGH, over the same input lights, rays and light shading:
 //   in:  RtslcInputs: SceneGpu (BVH), GBuffer, S0 and its light tree (LightTreePass)
-//   out: RtslcTargets: the shadowed irradiance estimate (unbiased) and the same samples' unshadowed one
+//   out: RtslcTargets: the shadowed irradiance estimate (unbiased; with m x m interleaving, over m^2 frames)
 // Two steps, timed apart: the cuts (one per block) and the sampling (n lights per pixel, one shadow ray
 // each), which reads the last cuts.
 
@@ -31,14 +31,14 @@ struct RtslcOptions {
 };
 
 struct RtslcTargets {
-  gl::Texture2D& shadowed;    // RGBA32F
-  gl::Texture2D& unshadowed;  // RGBA32F
+  gl::Texture2D& shadowed;  // RGBA32F
 };
 
 class RtslcPass {
  public:
   RtslcPass();
-  // Both throw std::invalid_argument for settings out of range (samples, block size, interleave).
+  // Both throw std::invalid_argument for settings out of range (samples, block size, interleave; samples x
+  // interleave^2 cut nodes at most gpu::kMaxCutNodes, the block a multiple of the interleave).
   void selectCuts(const RtslcInputs& in, const RtslcOptions& options);
   void sample(const RtslcInputs& in, const RtslcOptions& options, const RtslcTargets& out);
   // The last cuts: gpu::kMaxCutNodes node indices per block, row by row from the bottom (kNoCutNode: unused).
@@ -47,7 +47,7 @@ class RtslcPass {
  private:
   void bind(const RtslcInputs& in, const RtslcOptions& options, size_t dispatch);
   gl::Program program_;
-  gl::UniformBlocks uniforms_;  // cuts, sampling
+  gl::UniformBlocks uniforms_;  // the dispatch's gpu::RtslcUniforms, uploaded before each
   gl::Buffer cuts_;             // gpu::kMaxCutNodes node indices per block
 };
 

@@ -179,6 +179,55 @@ TEST_F(LightcutsFrameTest, AccumulatedFramesConvergeToTheExactShadowedSum) {
   EXPECT_NEAR(sxy / sxx, -0.5, 0.1);
 }
 
+// With 2x2 interleaving (2 samples per pixel from cuts of 8 nodes) one frame is not unbiased per pixel, but
+// every 4 frames are (each pixel then takes every node of its block's cut once): the means of 32 groups of 4
+// accumulated frames equal the exact shadowed sum within their standard error, summed over the pixels.
+TEST_F(LightcutsFrameTest, InterleavedFramesAreUnbiasedOverTheirGroup) {
+  settings.accumulation.enabled = true;
+  settings.rtslc.samples = 2;
+  settings.rtslc.interleave = 2;
+  const SceneGpu gpu(scene);
+  Renderer renderer(gpu, settings);
+  constexpr int kGroups = 32, kGroup = 4;
+  std::vector<double> sum, squares, previous;
+  ImageRGBA exact;
+  for (int frames = 1; frames <= kGroups * kGroup; ++frames) {
+    renderer.render(view());
+    if (frames == 1) exact = exactIrradiance(renderer, &gpu);
+    if (frames % kGroup != 0) continue;
+    const ImageRGBA accumulated = renderer.readImage(Aov::Irradiance);
+    sum.resize(accumulated.pixels.size(), 0.0), squares.resize(sum.size(), 0.0), previous.resize(sum.size(), 0.0);
+    for (size_t i = 0; i < sum.size(); ++i) {
+      const double mean = luminance(glm::dvec3(accumulated.pixels[i]));
+      const double group = (frames * mean - (frames - kGroup) * previous[i]) / kGroup;  // this group's mean
+      sum[i] += group, squares[i] += group * group, previous[i] = mean;
+    }
+  }
+  double difference = 0, variance = 0;
+  for (size_t i = 0; i < sum.size(); ++i) {
+    const double want = luminance(glm::dvec3(exact.pixels[i])), mean = sum[i] / kGroups;
+    const double meanVariance = std::max(squares[i] / kGroups - mean * mean, 0.0) / (kGroups - 1);
+    if (!(want > 0) || meanVariance <= 0) continue;
+    difference += mean - want;
+    variance += meanVariance;
+  }
+  ASSERT_GT(variance, 0.0);
+  const double z = difference / std::sqrt(variance);
+  std::printf("lightcuts 2x2: summed bias %.3g standard errors over groups of 4 frames\n", z);
+  EXPECT_LT(std::abs(z), 4.0);
+}
+
+// No input lights (no VPLs, no emitter samples): no tree, no cuts, a black indirect light and no NaN.
+TEST_F(LightcutsFrameTest, NoLightsGiveNoIndirectLight) {
+  settings.inputLights.vpls = 0;
+  settings.inputLights.emitterSamples = 0;
+  const SceneGpu gpu(scene);
+  Renderer renderer(gpu, settings);
+  EXPECT_EQ(renderer.render(view()).nonFinitePixels, 0u);
+  EXPECT_EQ(renderer.lightTree().leafCount, 0u);
+  for (const glm::vec4& p : renderer.readImage(Aov::Irradiance).pixels) ASSERT_EQ(glm::vec3(p), glm::vec3(0.0f));
+}
+
 // Per-pixel cuts (B = 1: the representative is the pixel itself) against the CPU reference's greedy cut
 // at each pixel's surface: every GPU cut partitions the lit lights, and all but a few (float against double
 // where two nodes' bounds nearly tie) are the reference's cut, node for node.
