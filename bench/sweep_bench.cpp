@@ -254,7 +254,7 @@ void applySmokePreset(SweepOptions& options, const std::function<bool(const char
   if (!given("--uniform-lights")) options.uniformLights = {16, 64};
   if (!given("--uniform-shadowed-lights")) options.uniformShadowedLights = {2, 4};
   if (!given("--images")) options.images = false;
-  if (!given("--retries")) options.retries = 0;  // ctest runs tests side by side: times are not the point
+  if (!given("--retries")) options.retries = 0;               // ctest runs tests side by side: times are not the point
   if (!given("--rtslc-samples")) options.rtslcSamples = {2};  // one point of the peer method
 }
 

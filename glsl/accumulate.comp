@@ -8,8 +8,8 @@
 //   ratio sum       r: sum of T_f r_f, g: sum of T_f, b: sum of var(T_f), a: unused
 //                   (T_f = lum(E_f) D_f: the frame's ratio weight, what its shadow samples estimate the
 //                   input lights add, D_f their mean weight; var(T_f) its variance, the frames independent)
-//   spread sum      r: sum of T_f^2, g: sum of T_f C_f, b: sum of C_f^2, a: sum of C_f (C_f = lum(E_f), the
-//                   irradiance T_f was drawn against), from which the frames' own spread is estimated
+//   heaviest frame  r: T_h, g: C_h of the frame with the largest D_f = T_f / C_f (C_f = lum(E_f), the
+//                   irradiance T_f was drawn against); b, a: unused
 // Raw, not filtered, values are summed so that the sums converge to the exact estimate instead of to
 // a filtered one. Outputs, in place: the accumulated irradiance sum / N (with interleaving once
 // N >= n^2, when the rotated dealing has given the pixel every light; before that stage 1 resolves the
@@ -19,13 +19,14 @@
 // lum(sum E / N), the mean of the irradiances the frames' T were drawn against (unresolved: with
 // interleaving the tiles the pixel has seen, which before N >= n^2 are not all of them), so that the
 // filter's mean weight sum(T) / sum(lum E) compares the same lights' sums.
-// The weight's variance is the larger of the frames' own, sum(var T) / N^2, and their spread as a ratio
-// estimator's, sum (T_f - D C_f)^2 / (N (N - 1)) with D = sum T / sum C (Cochran 1977, 6.3; as the
-// filter's resolve takes its window's spread): with k = 1 a frame's var(T_f) is the prior alone (one
-// sample shows no spread), so without the spread an estimate resting on one heavy sample was trusted as
-// typical (measured: 16 frames at 4 x 4, k = 1, the correction 2.5x the uncorrected error,
-// docs/measurements.md); and with interleaving the frames' T_f differ by what their tiles' lights add,
-// which only their spread shows.
+// The weight's variance is the larger of the frames' own, sum(var T) / N^2, and what the heaviest frame
+// alone adds to the mean's squared error, (T_h - D C_h)^2 / N^2 with D = sum T / sum C: with k = 1 a
+// frame's var(T_f) is the prior alone (one sample shows no spread), so an estimate resting on one heavy
+// sample was trusted as typical (measured: 16 frames at 4 x 4, k = 1, the correction 2.5x the uncorrected
+// error, docs/measurements.md). The frames' whole spread as a ratio estimator's, sum (T_f - D C_f)^2 /
+// (N (N - 1)), also held what the tiles' lights add, which the rotated dealing stratifies, and took back
+// half the correction's gain at 16 frames (Sponza 10K 4x4 k = 16 raw: 0.086 -> 0.121, the heaviest frame
+// alone 0.088; uncorrected 0.151).
 // With N = 1 the outputs are this frame's values bit for bit.
 // Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
 // irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, over
@@ -42,14 +43,14 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = LGH_TEXTURE_ACCUM_RAW_IRRADIANCE) uniform sampler2D rawIrradiance;  // tiled layout when n > 1
 layout(binding = LGH_TEXTURE_ACCUM_IRRADIANCE_SUM) uniform sampler2D historyIrradiance;
 layout(binding = LGH_TEXTURE_ACCUM_RATIO_SUM) uniform sampler2D historyRatio;
-layout(binding = LGH_TEXTURE_ACCUM_SPREAD_SUM) uniform sampler2D historySpread;
+layout(binding = LGH_TEXTURE_ACCUM_HEAVIEST) uniform sampler2D historyHeaviest;
 layout(binding = LGH_TEXTURE_ACCUM_PREVIOUS_POSITION) uniform sampler2D previousPosition;  // w = 0: no surface
 layout(binding = LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL) uniform sampler2D previousNormal;
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_IRRADIANCE) uniform image2D irradiance;  // resolved in, accumulated out
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_RATIO) uniform image2D ratio;            // raw in, accumulated out (a: N)
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_IRRADIANCE_SUM) uniform writeonly image2D irradianceSumOut;
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_RATIO_SUM) uniform writeonly image2D ratioSumOut;
-layout(rgba32f, binding = LGH_IMAGE_ACCUM_SPREAD_SUM) uniform writeonly image2D spreadSumOut;
+layout(rg32f, binding = LGH_IMAGE_ACCUM_HEAVIEST) uniform writeonly image2D heaviestOut;
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_POSITION) uniform writeonly image2D positionOut;
 layout(rgba16f, binding = LGH_IMAGE_ACCUM_NORMAL) uniform writeonly image2D normalOut;
 layout(r32f, binding = LGH_IMAGE_ACCUM_SAMPLED_IRRADIANCE) uniform writeonly image2D sampledIrradiance;  // C out
@@ -113,16 +114,16 @@ void main() {
   if (!s.valid) {
     imageStore(irradianceSumOut, pixel, vec4(0.0));
     imageStore(ratioSumOut, pixel, vec4(0.0));
-    imageStore(spreadSumOut, pixel, vec4(0.0));
+    imageStore(heaviestOut, pixel, vec4(0.0));
     return;
   }
-  vec4 irradianceSum = vec4(0.0), ratioSum = vec4(0.0), spreadSum = vec4(0.0);
+  vec4 irradianceSum = vec4(0.0), ratioSum = vec4(0.0), heaviest = vec4(0.0);
   if (accum.hasHistory != 0u) {
     ivec2 q = historyPixel(s, size);
     if (q.x >= 0) {
       irradianceSum = texelFetch(historyIrradiance, q, 0);
       ratioSum = texelFetch(historyRatio, q, 0);
-      spreadSum = texelFetch(historySpread, q, 0);
+      heaviest = texelFetch(historyHeaviest, q, 0);
     }
   }
   // At the cap the sums are scaled to maxFrames - 1 frames first: a moving average of the last frames.
@@ -131,7 +132,6 @@ void main() {
     float keep = (accum.maxFrames - 1.0) / n;
     irradianceSum *= keep;
     ratioSum *= keep;
-    spreadSum *= keep;
   }
   vec3 e = accum.tilesPerAxis > 1u ? texelFetch(rawIrradiance, tiledCoord(pixel), 0).rgb
                                    : texelFetch(rawIrradiance, pixel, 0).rgb;
@@ -141,10 +141,10 @@ void main() {
   float variance = accum.shadowed != 0u ? max(rawRatio.g, 0.0) : 0.0;
   irradianceSum += vec4(e, 1.0);
   ratioSum += vec4(weight * r, weight, variance, 0.0);
-  spreadSum += vec4(weight * weight, weight * l, l * l, l);
+  if (l > 0.0 && (heaviest.g <= 0.0 || weight * heaviest.g > heaviest.r * l)) heaviest = vec4(weight, l, 0.0, 0.0);
   imageStore(irradianceSumOut, pixel, irradianceSum);
   imageStore(ratioSumOut, pixel, ratioSum);
-  imageStore(spreadSumOut, pixel, spreadSum);
+  imageStore(heaviestOut, pixel, heaviest);
   float frames = irradianceSum.a;
   if (frames < 1.5) return;  // this frame only: its values stay as they are
   // Before n^2 frames the sum lacks some of the lights' tiles: stage 1 resolves it.
@@ -153,9 +153,12 @@ void main() {
   if (accum.shadowed != 0u) {
     // sum(T) = 0: no frame's samples weighed anything, and each frame's ratio was 1 (shadow_rays.comp).
     float accumulated = ratioSum.g > 0.0 ? ratioSum.r / ratioSum.g : rawRatio.r;
-    float meanWeight = spreadSum.a > 0.0 ? ratioSum.g / spreadSum.a : 1.0;  // D
-    float residuals = max(spreadSum.r - 2.0 * meanWeight * spreadSum.g + meanWeight * meanWeight * spreadSum.b, 0.0);
-    float weightVariance = max(ratioSum.b / (frames * frames), residuals / (frames * (frames - 1.0)));
+    float irradianceLuminance = luminance(irradianceSum.rgb);  // sum C
+    float meanWeight = irradianceLuminance > 0.0 ? ratioSum.g / irradianceLuminance : 1.0;  // D
+    float residual = heaviest.r - meanWeight * heaviest.g;
+    float heaviestShare = residual * residual / (frames * frames);
+    if (isnan(heaviestShare)) heaviestShare = uintBitsToFloat(0x7f800000u);  // sum C underflows: D is unknown
+    float weightVariance = max(ratioSum.b / (frames * frames), heaviestShare);
     imageStore(ratio, pixel, vec4(clamp(accumulated, 0.0, 1.0), weightVariance, ratioSum.g / frames, frames));
     imageStore(sampledIrradiance, pixel, vec4(luminance(irradianceSum.rgb / frames)));
   }

@@ -50,7 +50,7 @@
 #define LGH_TEXTURE_ACCUM_RATIO_SUM 6          // accumulation history: shadowed and unshadowed luminance sums
 #define LGH_TEXTURE_ACCUM_PREVIOUS_POSITION 7  // accumulation history: the surfaces it belongs to
 #define LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL 8
-#define LGH_TEXTURE_ACCUM_SPREAD_SUM 9  // accumulation history: the sums the frames' spread of T is estimated from
+#define LGH_TEXTURE_ACCUM_HEAVIEST 9  // accumulation history: the frame with the largest mean weight
 
 // Image units, per pass.
 #define LGH_IMAGE_TILED_POSITION 0             // interleave split
@@ -75,7 +75,7 @@
 #define LGH_IMAGE_ACCUM_POSITION 4
 #define LGH_IMAGE_ACCUM_NORMAL 5
 #define LGH_IMAGE_ACCUM_SAMPLED_IRRADIANCE 6  // accumulation: this frame's in, the accumulated out
-#define LGH_IMAGE_ACCUM_SPREAD_SUM 7
+#define LGH_IMAGE_ACCUM_HEAVIEST 7
 
 // Uniform blocks.
 #define LGH_UBO_FRAME 0

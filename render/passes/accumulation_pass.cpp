@@ -26,7 +26,7 @@ void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationS
     if (h->irradianceSum.width() == gbuffer.width && h->irradianceSum.height() == gbuffer.height) continue;
     h->irradianceSum = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
     h->ratioSum = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
-    h->spreadSum = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
+    h->heaviest = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RG32F);
     h->position = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
     h->normal = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA16F);
     hasHistory_ = false;
@@ -56,7 +56,7 @@ void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationS
   in.rawIrradiance.bindTexture(LGH_TEXTURE_ACCUM_RAW_IRRADIANCE);
   previous.irradianceSum.bindTexture(LGH_TEXTURE_ACCUM_IRRADIANCE_SUM);
   previous.ratioSum.bindTexture(LGH_TEXTURE_ACCUM_RATIO_SUM);
-  previous.spreadSum.bindTexture(LGH_TEXTURE_ACCUM_SPREAD_SUM);
+  previous.heaviest.bindTexture(LGH_TEXTURE_ACCUM_HEAVIEST);
   previous.position.bindTexture(LGH_TEXTURE_ACCUM_PREVIOUS_POSITION);
   previous.normal.bindTexture(LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL);
   io.irradiance.bindImage(LGH_IMAGE_ACCUM_IRRADIANCE, GL_READ_WRITE);
@@ -64,7 +64,7 @@ void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationS
   io.sampledIrradiance.bindImage(LGH_IMAGE_ACCUM_SAMPLED_IRRADIANCE, GL_WRITE_ONLY);
   next.irradianceSum.bindImage(LGH_IMAGE_ACCUM_IRRADIANCE_SUM, GL_WRITE_ONLY);
   next.ratioSum.bindImage(LGH_IMAGE_ACCUM_RATIO_SUM, GL_WRITE_ONLY);
-  next.spreadSum.bindImage(LGH_IMAGE_ACCUM_SPREAD_SUM, GL_WRITE_ONLY);
+  next.heaviest.bindImage(LGH_IMAGE_ACCUM_HEAVIEST, GL_WRITE_ONLY);
   next.position.bindImage(LGH_IMAGE_ACCUM_POSITION, GL_WRITE_ONLY);
   next.normal.bindImage(LGH_IMAGE_ACCUM_NORMAL, GL_WRITE_ONLY);
   uniforms_.bind(0, LGH_UBO_PASS);

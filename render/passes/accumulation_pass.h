@@ -8,7 +8,7 @@
 //        (this frame's in, the mean of the unresolved irradiances the frames' ratio weights T were drawn
 //        against out)
 //   history (kept here, ping-pong): sums of the raw irradiance, of the ratio's weighted values, weights
-//        and variances, of the products the weights' spread over the frames is estimated from, and the
+//        and variances, the frame whose weight strays the most (it bounds their variance), and the
 //        surfaces they belong to
 // The history is reprojected through the G-buffer each frame and dropped where the surface differs;
 // restart() drops all of it (the lights or the estimate's settings changed).
@@ -53,7 +53,7 @@ class AccumulationPass {
 
  private:
   struct History {
-    gl::Texture2D irradianceSum, ratioSum, spreadSum, position, normal;
+    gl::Texture2D irradianceSum, ratioSum, heaviest, position, normal;
   };
   gl::Program program_;
   gl::UniformBlocks uniforms_;  // one gpu::AccumulationUniforms per dispatch
