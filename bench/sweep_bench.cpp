@@ -293,15 +293,12 @@ int runSweepBench(SweepOptions options) {
   if (options.outDir.empty()) options.outDir = "sweep-results";
   options.scalingVpls.erase(std::remove(options.scalingVpls.begin(), options.scalingVpls.end(), size_t(0)),
                             options.scalingVpls.end());  // --scaling-vpls 0: none
-  if (points.empty()) {
-    std::vector<bool> filters;
-    for (const std::string& f : options.filter) filters.push_back(f == "on");
+  std::vector<bool> filters;
+  for (const std::string& f : options.filter) filters.push_back(f == "on");
+  if (points.empty())
     points =
         grid(options.alphas, options.startLevels, options.interleave, options.shadowSamples, filters, options.frames);
-  }
   if (!options.rtslcSamples.empty()) {
-    std::vector<bool> filters;
-    for (const std::string& f : options.filter) filters.push_back(f == "on");
     for (const PointSpec& p :
          lightcutPoints(options.rtslcSamples, options.rtslcBlocks, options.rtslcInterleave, filters, options.frames))
       points.push_back(p);

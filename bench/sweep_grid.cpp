@@ -27,14 +27,12 @@ RenderSettings PointSpec::applied(const RenderSettings& base) const {
     s.rtslc.samples = k;
     s.rtslc.blockSize = block;
     s.rtslc.interleave = interleave;
-    s.filter.passes = filter ? base.filter.passes : 0;
-    if (frames > 1) s.accumulation.enabled = true;
-    return s;
+  } else {
+    s.lightPass.alpha = alpha;
+    s.lightPass.startLevel = startLevel;
+    s.lightPass.interleave = interleave;
+    s.shadows.samples = k;
   }
-  s.lightPass.alpha = alpha;
-  s.lightPass.startLevel = startLevel;
-  s.lightPass.interleave = interleave;
-  s.shadows.samples = k;
   s.filter.passes = filter ? base.filter.passes : 0;
   // More than one frame is an accumulation, whatever the base says.
   if (frames > 1) s.accumulation.enabled = true;
