@@ -95,6 +95,8 @@ OcclusionScene::OcclusionScene(const std::vector<glm::vec3>& positions, const st
   if (indices.size() % 3 != 0) throw std::invalid_argument("OcclusionScene: index count is not a multiple of 3");
   for (std::uint32_t i : indices)
     if (i >= positions.size()) throw std::invalid_argument("OcclusionScene: index out of range");
+  contentHash_ = hashBytes(indices.data(), indices.size() * sizeof(std::uint32_t),
+                           hashBytes(positions.data(), positions.size() * sizeof(glm::vec3)));
   device_ = rtcNewDevice(nullptr);
   if (!device_)
     throw std::runtime_error("Embree: rtcNewDevice failed (error " + std::to_string(int(rtcGetDeviceError(nullptr))) +
@@ -175,17 +177,26 @@ std::vector<std::uint32_t> choosePixels(int width, int height, double fraction, 
 
 ReferenceImage computeReference(const OcclusionScene& scene, const ReferenceInput& input,
                                 const ReferenceOptions& options) {
+  if (!(options.pixelFraction > 0.0)) throw std::invalid_argument("reference: the pixel fraction must be > 0");
+  return computePixels(scene, input, choosePixels(input.width, input.height, options.pixelFraction, options.subsetSeed),
+                       options);
+}
+
+ReferenceImage computePixels(const OcclusionScene& scene, const ReferenceInput& input,
+                             std::vector<std::uint32_t> pixels, const ReferenceOptions& options) {
   const size_t pixelCount = size_t(std::max(input.width, 0)) * size_t(std::max(input.height, 0));
   if (input.width <= 0 || input.height <= 0) throw std::invalid_argument("reference: empty image");
   if (input.position.size() != pixelCount || input.normal.size() != pixelCount)
     throw std::invalid_argument("reference: the G-buffer does not have width x height pixels");
   if (!(input.clampDistance >= 0.0)) throw std::invalid_argument("reference: the clamp distance must be >= 0");
-  if (!(options.pixelFraction > 0.0)) throw std::invalid_argument("reference: the pixel fraction must be > 0");
+  for (size_t i = 0; i < pixels.size(); ++i)
+    if (pixels[i] >= pixelCount || (i > 0 && pixels[i] <= pixels[i - 1]))
+      throw std::invalid_argument("reference: the pixels must be ascending image indices");
 
   ReferenceImage out;
   out.width = input.width;
   out.height = input.height;
-  out.pixels = choosePixels(input.width, input.height, options.pixelFraction, options.subsetSeed);
+  out.pixels = std::move(pixels);
   out.unshadowed.assign(out.pixels.size(), glm::dvec3(0.0));
   if (options.shadowed) out.shadowed.assign(out.pixels.size(), glm::dvec3(0.0));
   out.threads = workerCount(options.threads);
@@ -318,14 +329,22 @@ bool readVector(std::istream& in, std::vector<T>& values, std::uint64_t limit) {
 }  // namespace
 
 std::optional<ReferenceImage> loadReference(const std::filesystem::path& dir, const std::string& description) {
-  std::ifstream in(dir / cacheFileName(description), std::ios::binary);
+  std::string stored;
+  std::optional<ReferenceImage> image = readReferenceFile(dir / cacheFileName(description), &stored);
+  if (!image || stored != description) return std::nullopt;
+  return image;
+}
+
+std::optional<ReferenceImage> readReferenceFile(const std::filesystem::path& path, std::string* description) {
+  std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;
   char magic[8];
   std::uint64_t length = 0;
   if (!in.read(magic, 8) || std::memcmp(magic, kMagic, 8) != 0 || !readPod(in, length) || length > (1u << 20))
     return std::nullopt;
   std::string stored(size_t(length), '\0');
-  if (!in.read(stored.data(), std::streamsize(length)) || stored != description) return std::nullopt;
+  if (!in.read(stored.data(), std::streamsize(length))) return std::nullopt;
+  if (description) *description = stored;
   ReferenceImage image;
   std::uint64_t lightCount = 0;
   if (!readPod(in, image.width) || !readPod(in, image.height) || !readPod(in, image.seconds) ||

@@ -52,8 +52,11 @@ class OcclusionScene {
   std::vector<std::uint8_t> occluded(const std::vector<Ray>& rays, unsigned threads = 0) const;
 
   RTCSceneTy* handle() const { return scene_; }
+  // A hash of the triangles (vertex positions and indices): the occluders, for cache keys.
+  std::uint64_t contentHash() const { return contentHash_; }
 
  private:
+  std::uint64_t contentHash_ = 0;
   RTCDeviceTy* device_ = nullptr;
   RTCSceneTy* scene_ = nullptr;
 };
@@ -102,6 +105,11 @@ std::vector<std::uint32_t> choosePixels(int width, int height, double fraction, 
 // Throws std::invalid_argument on inconsistent input (sizes, a non-positive clamp distance is allowed).
 ReferenceImage computeReference(const OcclusionScene& scene, const ReferenceInput& input,
                                 const ReferenceOptions& options);
+// The same sums at the given pixels only (ascending indices y * width + x; the subset options are
+// not used): a tile of a reference computed in parts (bench/reference_tiles.h). Each pixel's sums
+// depend on that pixel alone, so the parts of an image are its pixels, bit for bit.
+ReferenceImage computePixels(const OcclusionScene& scene, const ReferenceInput& input,
+                             std::vector<std::uint32_t> pixels, const ReferenceOptions& options);
 
 // --- Cache. A reference is stored under a description of everything it depends on (the caller writes
 // it: scene path and modification time, camera, resolution, light settings and seed, clamp, pixel
@@ -109,6 +117,8 @@ ReferenceImage computeReference(const OcclusionScene& scene, const ReferenceInpu
 // in the file and compared on load, so a collision can never hand back the wrong reference.
 std::string cacheFileName(const std::string& description);
 std::optional<ReferenceImage> loadReference(const std::filesystem::path& dir, const std::string& description);
+// A cache file read whatever its description (stored in *description): for tools and tests.
+std::optional<ReferenceImage> readReferenceFile(const std::filesystem::path& path, std::string* description = nullptr);
 // Written to a temporary file and renamed into place. Throws std::runtime_error on a write failure.
 void storeReference(const std::filesystem::path& dir, const std::string& description, const ReferenceImage& image);
 

@@ -6,12 +6,17 @@
 //    cases, and the shadowed sums agree with BruteForcePass's shadowed variant.
 //  * A pixel subset computes exactly the full reference's values there; the cache returns what was
 //    stored, and only for the same description.
+//  * In tiles (bench/reference_tiles.h): the tiles cover every pixel once, the reference assembled from
+//    tiles (also tiles stored and loaded back) is the one-piece reference bit for bit, and a tile file
+//    that is truncated, corrupt, of another reference, tile or pixel subset is refused.
 #include "bench/reference.h"
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <numeric>
 
+#include "bench/reference_tiles.h"
 #include "gl_test_env.h"
 #include "gltf_writer.h"
 #include "lgh/shading.h"
@@ -213,6 +218,116 @@ TEST_F(ReferenceTest, PixelSubsetMatchesFullReference) {
   }
   // Another seed, another subset.
   EXPECT_NE(reference::choosePixels(64, 36, 0.25, 1), reference::choosePixels(64, 36, 0.25, 2));
+}
+
+TEST(ReferenceTiles, CoverEveryPixelOnce) {
+  for (const auto& [w, h, size] : {std::tuple{64, 36, 16}, std::tuple{65, 37, 16}, std::tuple{7, 5, 32},
+                                   std::tuple{10, 10, 1}, std::tuple{33, 1, 8}}) {
+    const reference::TileGrid grid{w, h, size};
+    const std::vector<std::uint32_t> all = reference::choosePixels(w, h, 1.0, 1);
+    const std::vector<std::uint32_t> subset = reference::choosePixels(w, h, 0.3, 7);
+    for (const std::vector<std::uint32_t>* pixels : {&all, &subset}) {
+      std::vector<int> seen(size_t(w) * size_t(h), 0);
+      size_t total = 0;
+      for (int t = 0; t < grid.count(); ++t) {
+        const reference::TileGrid::Rect r = grid.rect(t);
+        const std::vector<std::uint32_t> inside = grid.pixelsOf(t, *pixels);
+        EXPECT_TRUE(std::is_sorted(inside.begin(), inside.end()));
+        for (std::uint32_t p : inside) {
+          const int x = int(p) % w, y = int(p) / w;
+          EXPECT_TRUE(x >= r.x0 && x < r.x1 && y >= r.y0 && y < r.y1) << grid.label(t) << " holds pixel " << p;
+          ++seen[p];
+        }
+        total += inside.size();
+      }
+      EXPECT_EQ(total, pixels->size()) << w << "x" << h << " tiles of " << size;
+      for (std::uint32_t p : *pixels) EXPECT_EQ(seen[p], 1) << "pixel " << p;
+    }
+  }
+}
+
+TEST_F(ReferenceTest, TilesAssembleToTheOnePieceReferenceBitForBit) {
+  CornellFrame f;
+  const reference::OcclusionScene occlusion(f.scene.positions, f.scene.indices);
+  reference::ReferenceOptions o;
+  o.progress = false;
+  for (double fraction : {1.0, 0.4}) {
+    o.pixelFraction = fraction;
+    const reference::ReferenceImage whole = reference::computeReference(occlusion, f.input, o);
+    const reference::TileGrid grid{f.input.width, f.input.height, 16};
+    TempDir dir;
+    const reference::TileStore store(dir.path(), "cornell test\n", grid);
+    std::vector<reference::ReferenceImage> parts;
+    for (int t = 0; t < grid.count(); ++t) {
+      store.store(t, reference::computePixels(occlusion, f.input, grid.pixelsOf(t, whole.pixels), o));
+      std::string why;
+      auto part = store.load(t, whole.pixels, &why);
+      ASSERT_TRUE(part) << why;
+      parts.push_back(std::move(*part));
+    }
+    const reference::ReferenceImage assembled = reference::assembleTiles(grid, whole.pixels, parts);
+    EXPECT_EQ(assembled.pixels, whole.pixels);
+    EXPECT_EQ(assembled.unshadowed, whole.unshadowed);  // exact: each pixel's sums are its own
+    EXPECT_EQ(assembled.shadowed, whole.shadowed);
+    EXPECT_EQ(assembled.rays, whole.rays);
+    EXPECT_EQ(assembled.pairs, whole.pairs);
+    // Parts that miss a pixel, or hold one twice, are refused.
+    std::vector<reference::ReferenceImage> missing = parts;
+    missing[1] = missing[0];
+    EXPECT_THROW(reference::assembleTiles(grid, whole.pixels, missing), std::invalid_argument);
+  }
+}
+
+TEST(ReferenceTiles, BadTileFilesAreRefused) {
+  TempDir dir;
+  const reference::TileGrid grid{8, 4, 4};  // tiles 0 (x 0-3) and 1 (x 4-7)
+  const std::vector<std::uint32_t> pixels = reference::choosePixels(8, 4, 1.0, 1);
+  reference::ReferenceImage part;
+  part.width = 8;
+  part.height = 4;
+  part.pixels = grid.pixelsOf(1, pixels);
+  for (std::uint32_t p : part.pixels) {
+    part.unshadowed.push_back(glm::dvec3(p, 2 * p, 0.5));
+    part.shadowed.push_back(glm::dvec3(p, p, 0.25));
+  }
+  part.rays = 7;
+  const reference::TileStore store(dir.path(), "key a\n", grid);
+  store.store(1, part);
+  std::string why;
+  ASSERT_TRUE(store.load(1, pixels, &why)) << why;
+  EXPECT_EQ(store.load(1, pixels)->shadowed, part.shadowed);
+  EXPECT_FALSE(store.load(0, pixels, &why));  // no file: absent, no reason
+  EXPECT_TRUE(why.empty());
+  // Another key (another folder), another subset, another tile (a file renamed), another tile size.
+  EXPECT_FALSE(reference::TileStore(dir.path(), "key b\n", grid).load(1, pixels));
+  EXPECT_FALSE(store.load(1, reference::choosePixels(8, 4, 0.5, 3), &why));
+  EXPECT_NE(why.find("other pixels"), std::string::npos) << why;
+  std::filesystem::copy_file(store.file(1), store.file(0));
+  EXPECT_FALSE(store.load(0, pixels, &why));
+  EXPECT_NE(why.find("another tile"), std::string::npos) << why;
+  EXPECT_FALSE(reference::TileStore(dir.path(), "key a\n", reference::TileGrid{8, 4, 2}).load(1, pixels));
+  // One flipped byte anywhere, or a truncation: the checksum catches it.
+  const std::filesystem::path file = store.file(1);
+  const auto size = std::filesystem::file_size(file);
+  for (std::uintmax_t at : {std::uintmax_t(3), size / 2, size - 9, size - 1}) {
+    std::fstream io(file, std::ios::in | std::ios::out | std::ios::binary);
+    io.seekg(std::streamoff(at));
+    const char c = char(io.get());
+    io.seekp(std::streamoff(at));
+    io.put(char(c ^ 0x10));
+    io.close();
+    EXPECT_FALSE(store.load(1, pixels, &why)) << "byte " << at;
+    EXPECT_FALSE(why.empty());
+    io.open(file, std::ios::in | std::ios::out | std::ios::binary);
+    io.seekp(std::streamoff(at));
+    io.put(c);
+  }
+  ASSERT_TRUE(store.load(1, pixels));
+  std::filesystem::resize_file(file, size - 20);
+  EXPECT_FALSE(store.load(1, pixels, &why));
+  EXPECT_NE(why.find("checksum"), std::string::npos) << why;
+  store.remove();
+  EXPECT_FALSE(std::filesystem::exists(store.dir()));
 }
 
 TEST(ReferenceCache, RoundTripAndKeying) {
