@@ -476,6 +476,13 @@ def plot_strip(results, rows, out, csv_dir):
     return []
 
 
+def fmt_factor(value, digits):
+    """'2.3x', or '-' where there is no such factor (a baseline the run did not measure)."""
+    if value is None or not np.isfinite(value):
+        return "-"
+    return f"{value:,.{digits}f}x"
+
+
 def fmt_ms(v):
     return "-" if v is None else (f"{v:,.0f}" if v >= 100 else f"{v:.1f}")
 
@@ -583,7 +590,7 @@ def summary(results, rows, info):
                 add(f"| {short_label(r, spell_k=True)} | {fmt_ms(x['time'])} | {x['error']:.3f} | "
                     f"{float(r['fragments_per_pixel']):,.0f} | "
                     + (f"{x['uniform_lights']:,.0f}, {fmt_ms(x['uniform_time'])}" if "uniform_time" in x else "-")
-                    + f" | {x.get('speedup_uniform', float('nan')):.1f}x | {x.get('speedup_brute', float('nan')):.0f}x |")
+                    + f" | {fmt_factor(x.get('speedup_uniform'), 1)} | {fmt_factor(x.get('speedup_brute'), 0)} |")
             add("")
         if sh:
             add("Shadowed front (time = build + light pass + shadow rays + filter):\n")
@@ -593,7 +600,7 @@ def summary(results, rows, info):
                 r = x["row"]
                 add(f"| {short_label(r, spell_k=True)} | {fmt_ms(x['time'])} | {x['error']:.3f} | "
                     f"{float(r['rmse_unshadowed']):.3f} | {float(r['fragments_per_pixel']):,.0f} | "
-                    f"{x.get('speedup_brute', float('nan')):,.0f}x |")
+                    f"{fmt_factor(x.get('speedup_brute'), 0)} |")
             add("")
         if sh and sh.get("rtslc_front"):
             add("Stochastic lightcuts front (time = light tree build + cuts + sampling + irradiance filter):\n")

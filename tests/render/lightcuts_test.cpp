@@ -268,7 +268,9 @@ TEST_F(LightcutsFrameTest, PerPixelCutsAreTheReferenceCuts) {
       for (uint32_t leaf = first; leaf <= last; ++leaf) ++covered[leaf - cpu.leafCount];
     }
     for (uint32_t leaf = 0; leaf < cpu.leafCount; ++leaf)
-      if (cpu.nodes[cpu.leafCount + leaf].intensity > 0) ASSERT_EQ(covered[leaf], 1) << "pixel " << pixel;
+      if (cpu.nodes[cpu.leafCount + leaf].intensity > 0) {
+        ASSERT_EQ(covered[leaf], 1) << "pixel " << pixel;
+      }
     const std::vector<uint32_t> want =
         selectCut(cpu, glm::dvec3(positions[pixel]), glm::dvec3(normals[pixel]), settings.rtslc.samples, minDistance);
     if (cut == want) ++same;
