@@ -10,12 +10,14 @@ cd "$(dirname "$0")"
 
 # openimageio-tools: OpenImageIO's CMake config refers to its command-line tools and fails without them.
 # libembree-dev: the CPU reference renderer (lgh-bench); libimgui-dev: the viewer; xvfb, xauth: the
-# viewer's test; python3-matplotlib: the sweep's plots; clang-format: the suite's format check.
+# viewer's test; python3-matplotlib: the sweep's plots; clang-format: the suite's format check;
+# libmpich-dev, mpich: lgh-bench under mpiexec / srun (MPICH rather than OpenMPI: CI runs as root, and
+# MPICH's mpiexec runs as root as it is, where OpenMPI's refuses unless told --allow-run-as-root).
 packages=(
   cmake g++ make pkg-config python3-glad
   libegl-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev libglfw3-dev
   libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libopenimageio-dev openimageio-tools libcli11-dev
-  libgtest-dev libembree-dev libimgui-dev xvfb xauth python3-matplotlib clang-format
+  libgtest-dev libembree-dev libimgui-dev xvfb xauth python3-matplotlib clang-format libmpich-dev mpich
 )
 
 install_missing() {

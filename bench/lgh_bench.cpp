@@ -3,6 +3,9 @@
 //   lgh-bench light [--vpls 1K,10K,100K,1M --interleave-vpls 100K ...]           (paper Fig. 5, interleaving)
 //   lgh-bench frame [--vpls 100K --shadow-samples 4 --interleave 1,2,4 ...]        (paper Table 3)
 //   lgh-bench sweep [--preset readme|smoke --scene S@CAM --alpha ... --csv ...]      (docs/design.md §7: error vs time)
+//   lgh-bench reference --scene S@CAM --vpls 1M [--out ref.exr ...]                 (docs/design.md §13: MPI,
+//   resumable)
+// Under mpiexec / srun (built with MPI: bench/ranks.h) the sweep and the reference share the work among the ranks.
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <iostream>
@@ -11,7 +14,9 @@
 #include "bench/build_bench.h"
 #include "bench/frame_bench.h"
 #include "bench/light_bench.h"
+#include "bench/ranks.h"
 #ifdef LGH_HAVE_REFERENCE
+#include "bench/reference_bench.h"
 #include "bench/sweep_bench.h"
 #endif
 
@@ -40,6 +45,9 @@ int run(int argc, char** argv) {
   lgh::bench::SweepOptions sweepOptions;
   benchmarks.push_back(
       {lgh::bench::addSweepCommand(app, sweepOptions), [&] { return lgh::bench::runSweepBench(sweepOptions); }});
+  lgh::bench::ReferenceBenchOptions referenceOptions;
+  benchmarks.push_back({lgh::bench::addReferenceCommand(app, referenceOptions),
+                        [&] { return lgh::bench::runReferenceBench(referenceOptions); }});
 #endif
 
   try {
@@ -56,10 +64,11 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const lgh::bench::Ranks ranks(argc, argv);  // MPI_Init first, MPI_Finalize last
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {
-    std::cerr << "lgh-bench: error: " << e.what() << "\n";
-    return 1;
+    // Under MPI the other ranks may be waiting for this one: end them all (MPI_Abort), saying which rank.
+    ranks.abort(std::string("lgh-bench: error: ") + e.what());
   }
 }

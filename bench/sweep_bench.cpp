@@ -12,8 +12,10 @@
 
 #include "bench/bench_setup.h"
 #include "bench/progress.h"
+#include "bench/ranks.h"
 #include "bench/reference.h"
 #include "bench/sweep_output.h"
+#include "bench/sweep_reference.h"
 #include "bench/sweep_runner.h"
 
 namespace lgh::bench {
@@ -33,12 +35,6 @@ void applySweepSetting(RenderSettings& settings, const std::string& assignment) 
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error("--set " + assignment + ": " + e.what());
   }
-}
-
-fs::path executableDir() {
-  std::error_code error;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
-  return error ? fs::current_path() : exe.parent_path();
 }
 
 // The scenes, loaded (a wrong camera name fails here, naming the cameras there are).
@@ -73,26 +69,32 @@ int runSweep(const SweepOptions& options, std::vector<PointSpec> points) {
   fs::create_directories(options.images ? imageDir : outDir);
   fs::path cacheDir;
   if (options.cacheDir != "none")
-    cacheDir = options.cacheDir.empty() ? executableDir() / "reference-cache" : fs::path(options.cacheDir);
+    cacheDir = options.cacheDir.empty() ? defaultReferenceCache() : fs::path(options.cacheDir);
 
+  const Ranks& ranks = Ranks::world();
   const auto context = createContext(options.backend);
-  SweepRunner runner(options, std::move(points), imageDir, cacheDir);
+  SweepRunner runner(ranks, options, std::move(points), imageDir, cacheDir);
   const RenderSettings& s = options.settings;
-  std::fprintf(stderr, "lgh-bench sweep: %zu scene%s x %zu VPL budget%s, %zu points each, %d repeats, %d x %d, %s\n",
-               specs.size(), specs.size() == 1 ? "" : "s", options.vpls.size(), options.vpls.size() == 1 ? "" : "s",
-               runner.points().size(), options.repeats, s.image.width, s.image.height, context->description().c_str());
-  std::fprintf(stderr, "  output: %s; reference cache: %s\n", outDir.string().c_str(),
-               cacheDir.empty() ? "none" : cacheDir.string().c_str());
-  ProgressBar progress("sweep", double(specs.size() * runner.workPerScene()));
+  if (ranks.root()) {
+    std::fprintf(stderr, "lgh-bench sweep: %zu scene%s x %zu VPL budget%s, %zu points each, %d repeats, %d x %d, %s\n",
+                 specs.size(), specs.size() == 1 ? "" : "s", options.vpls.size(), options.vpls.size() == 1 ? "" : "s",
+                 runner.points().size(), options.repeats, s.image.width, s.image.height,
+                 context->description().c_str());
+    std::fprintf(stderr, "  output: %s; reference cache: %s%s\n", outDir.string().c_str(),
+                 cacheDir.empty() ? "none" : cacheDir.string().c_str(),
+                 ranks.distributed() ? ("; " + std::to_string(ranks.size()) + " MPI ranks").c_str() : "");
+  }
+  ProgressBar progress("sweep", double(specs.size() * runner.workPerScene()), ranks.root());
   runner.setProgress(&progress);
   std::vector<Case> cases;
   for (size_t i = 0; i < specs.size(); ++i) {
     const SceneGpu gpu(scenes[i]);
     const reference::OcclusionScene occlusion(scenes[i].positions, scenes[i].indices);
     for (size_t vpls : options.vpls) cases.push_back(runner.runCase(gpu, occlusion, specs[i], vpls));
-    if (!options.scalingVpls.empty()) cases.push_back(runner.runScaling(gpu, specs[i]));
+    if (!options.scalingVpls.empty() && ranks.root()) cases.push_back(runner.runScaling(gpu, specs[i]));
   }
   progress.finish();
+  if (!ranks.root()) return 0;  // rank 0 has every measurement, and writes
 
   printSummary(options, *context, cases);
   const QuietSampler& sampler = runner.sampler();
@@ -210,7 +212,11 @@ void addRunOptions(CLI::App& command, SweepOptions& options) {
                      "reference cache (default: reference-cache beside lgh-bench; none: off)");
   command.add_option("--images", options.images, "write .npy images for the image strip (full references only)")
       ->capture_default_str();
-  command.add_option("--threads", options.threads, "reference threads (0: all)")->capture_default_str();
+  command.add_option("--threads", options.threads, "reference threads per rank (0: the host's, shared by its ranks)")
+      ->capture_default_str();
+  command.add_option("--tile", options.tileSize, "reference tile side in pixels (tiles are kept as they complete)")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
   command
       .add_option("--retries", options.retries,
                   "take a timed sample again, once the machine is quiet (waiting up to 2 min), up to this many "

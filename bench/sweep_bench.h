@@ -52,7 +52,8 @@ struct SweepOptions {
   std::string outDir;               // default: <source>/bench/results for the readme preset, else ./sweep-results
   std::string cacheDir;             // default: reference-cache beside the executable; "none": no cache
   bool images = true;               // .npy images (reference, every point) for the strip plot, full references only
-  unsigned threads = 0;             // reference workers (0: one per hardware thread)
+  unsigned threads = 0;             // reference workers per rank (0: this host's hardware threads / its ranks)
+  int tileSize = 32;                // reference tiles (pixels per side), each kept in the cache as it completes
   int retries = 3;  // a timed sample during which other processes took > 25% of the machine is taken again
   std::string backend = "auto";
   std::vector<std::string> set;  // NAME=VALUE: any other render setting, as the --NAME options

@@ -5,6 +5,8 @@
 #include <optional>
 #include <sstream>
 
+#include "bench/ranks.h"
+
 namespace lgh::bench {
 namespace {
 
@@ -21,18 +23,18 @@ double pixelFraction(const reference::ReferenceInput& input, const ReferenceRequ
   return fraction;
 }
 
-// Everything the reference depends on.
-std::string cacheKey(const SceneSpec& scene, const RenderSettings& s, const reference::ReferenceInput& input,
-                     double fraction) {
-  std::error_code error;
-  const auto mtime = fs::last_write_time(scene.path, error).time_since_epoch().count();
+// Everything the reference depends on, by content (so that every host of a cluster, and a copy of the
+// scene elsewhere, names it alike): the occluders' triangles, the camera and size, the light settings and
+// S0's hash, the G-buffer's hash, d_c, the pixel subset.
+std::string cacheKey(const reference::OcclusionScene& occlusion, const SceneSpec& scene, const RenderSettings& s,
+                     const reference::ReferenceInput& input, double fraction) {
   const std::uint64_t gbuffer =
       reference::hashBytes(input.normal.data(), input.normal.size() * sizeof(glm::vec4),
                            reference::hashBytes(input.position.data(), input.position.size() * sizeof(glm::vec4)));
   const InputLightSettings& l = s.inputLights;
   std::ostringstream key;
-  key << "lgh reference v1\nscene " << scene.path.string() << " mtime " << mtime << " bytes "
-      << fs::file_size(scene.path, error) << "\ncamera '" << s.image.camera << "' " << s.image.width << "x"
+  key << "lgh reference v2\nscene " << scene.path.filename().string() << " triangles "
+      << reference::hex64(occlusion.contentHash()) << "\ncamera '" << s.image.camera << "' " << s.image.width << "x"
       << s.image.height << "\nlights vpls " << l.vpls << " bounces " << l.bounces << " emitter-samples "
       << l.emitterSamples << " max-direct-lights " << l.maxDirectLights << " seed " << l.seed << " count "
       << input.lights.size() << " hash " << reference::hex64(reference::hashLights(input.lights)) << "\ngbuffer "
@@ -43,9 +45,13 @@ std::string cacheKey(const SceneSpec& scene, const RenderSettings& s, const refe
 
 }  // namespace
 
-reference::ReferenceImage obtainReference(const reference::OcclusionScene& occlusion, const SceneSpec& scene,
-                                          const Renderer& renderer, const std::vector<Light>& lights,
-                                          const ReferenceRequest& request, ReferenceInfo& info) {
+fs::path defaultReferenceCache() {
+  std::error_code error;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
+  return (error ? fs::current_path() : exe.parent_path()) / "reference-cache";
+}
+
+reference::ReferenceInput referenceInput(const Renderer& renderer, const std::vector<Light>& lights) {
   const RenderSettings& s = renderer.settings();
   reference::ReferenceInput input;
   input.width = s.image.width;
@@ -54,30 +60,41 @@ reference::ReferenceImage obtainReference(const reference::OcclusionScene& occlu
   input.normal = renderer.readImage(Aov::Normal).pixels;
   input.lights = lights;
   input.clampDistance = renderer.clampDistance();
-  const double fraction = pixelFraction(input, request);
-  const std::string key = cacheKey(scene, s, input, fraction);
-  info.fraction = fraction;
-  info.imagePixels = size_t(s.image.width) * size_t(s.image.height);
-  std::optional<reference::ReferenceImage> ref;
-  if (!request.cacheDir.empty()) {
-    ref = reference::loadReference(request.cacheDir, key);
-    info.cacheFile = (request.cacheDir / reference::cacheFileName(key)).string();
+  return input;
+}
+
+reference::ReferenceImage obtainReference(const Ranks& ranks, const reference::OcclusionScene& occlusion,
+                                          const SceneSpec& scene, const RenderSettings& settings,
+                                          const reference::ReferenceInput& input, const ReferenceRequest& request,
+                                          ReferenceInfo& info, TileCounts* tiles) {
+  // The subset and the key are rank 0's (the others' input is empty); computeTiledReference sends them.
+  double fraction = 1;
+  std::string key;
+  std::vector<std::uint32_t> pixels;
+  if (ranks.root()) {
+    fraction = pixelFraction(input, request);
+    key = cacheKey(occlusion, scene, settings, input, fraction);
+    pixels = reference::choosePixels(input.width, input.height, fraction, 1);
+    if (!request.cacheDir.empty()) info.cacheFile = (request.cacheDir / reference::cacheFileName(key)).string();
   }
-  info.cached = bool(ref);
-  if (!ref) {
-    reference::ReferenceOptions o;
-    o.pixelFraction = fraction;
-    o.threads = request.threads;
-    o.label = request.label;
-    ref = reference::computeReference(occlusion, input, o);
-    if (!request.cacheDir.empty()) reference::storeReference(request.cacheDir, key, *ref);
-  }
-  info.pixels = ref->pixels.size();
-  info.seconds = ref->seconds;
-  info.rays = ref->rays;
-  info.pairs = ref->pairs;
-  info.threads = ref->threads;
-  return std::move(*ref);
+  TiledReferenceOptions o;
+  o.tileSize = request.tileSize;
+  o.threads = request.threads;
+  o.cacheDir = request.cacheDir;
+  o.label = request.label;
+  o.killAfterTiles = request.killAfterTiles;
+  o.failTile = request.failTile;
+  TileCounts counts;
+  reference::ReferenceImage ref = computeTiledReference(ranks, occlusion, input, pixels, key, o, counts, info.cached);
+  if (tiles) *tiles = counts;
+  info.imagePixels = size_t(ref.width) * size_t(ref.height);
+  info.fraction = ranks.root() ? fraction : double(ref.pixels.size()) / double(std::max<size_t>(info.imagePixels, 1));
+  info.pixels = ref.pixels.size();
+  info.seconds = ref.seconds;
+  info.rays = ref.rays;
+  info.pairs = ref.pairs;
+  info.threads = ref.threads;
+  return ref;
 }
 
 }  // namespace lgh::bench

@@ -1,13 +1,16 @@
 #pragma once
-// The sweep's exact reference for a case (bench/reference.h: Embree on the CPU), from a disk cache
-// keyed by everything it depends on (scene file, camera, size, light settings and S0's hash, the
-// G-buffer's hash, d_c, the pixel subset), computed and stored there when missing.
+// The exact reference for a renderer's frame (bench/reference.h: Embree on the CPU), from a disk cache
+// keyed by everything it depends on (the occluders' triangles, camera, size, light settings and S0's
+// hash, the G-buffer's hash, d_c, the pixel subset), computed by every rank of the run in resumable
+// tiles (bench/reference_ranks.h) and stored there when missing. lgh-bench sweep and lgh-bench
+// reference both come here, so a reference made by one is found by the other.
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "bench/reference.h"
+#include "bench/reference_ranks.h"
 #include "bench/sweep_case.h"
 #include "render/renderer.h"
 
@@ -19,12 +22,22 @@ struct ReferenceRequest {
   unsigned threads = 0;            // workers (0: one per hardware thread)
   std::filesystem::path cacheDir;  // empty: no cache
   std::string label;               // for the progress bar
+  int tileSize = 32;               // pixels per tile side
+  int killAfterTiles = -1, failTile = -1;  // test hooks (TiledReferenceOptions)
 };
 
-// The reference for the renderer's last frame (its G-buffer, settings and d_c) lit by `lights` (its
-// S0); fills info with how it was obtained.
-reference::ReferenceImage obtainReference(const reference::OcclusionScene& occlusion, const SceneSpec& scene,
-                                          const Renderer& renderer, const std::vector<Light>& lights,
-                                          const ReferenceRequest& request, ReferenceInfo& info);
+// The cache both use by default: reference-cache beside the lgh-bench executable.
+std::filesystem::path defaultReferenceCache();
+
+// Rank 0's frame as the reference sees it: the renderer's G-buffer and d_c, lit by `lights` (its S0).
+reference::ReferenceInput referenceInput(const Renderer& renderer, const std::vector<Light>& lights);
+
+// Collective (every rank calls it): the reference for rank 0's `input`, rendered with `settings`, on
+// every rank (the other ranks' input and settings are not read); fills info (and *tiles) with how it
+// was obtained.
+reference::ReferenceImage obtainReference(const Ranks& ranks, const reference::OcclusionScene& occlusion,
+                                          const SceneSpec& scene, const RenderSettings& settings,
+                                          const reference::ReferenceInput& input, const ReferenceRequest& request,
+                                          ReferenceInfo& info, TileCounts* tiles = nullptr);
 
 }  // namespace lgh::bench

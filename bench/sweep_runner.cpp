@@ -4,11 +4,14 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <set>
 #include <tuple>
 
+#include "bench/bytes.h"
 #include "bench/npy.h"
+#include "bench/ranks.h"
 #include "bench/stats.h"
 #include "bench/sweep_reference.h"
 #include "bench/table.h"
@@ -78,9 +81,10 @@ struct SweepRunner::CaseImages {
   }
 };
 
-SweepRunner::SweepRunner(const SweepOptions& options, std::vector<PointSpec> points, fs::path imageDir,
-                         fs::path cacheDir)
-    : options_(options),
+SweepRunner::SweepRunner(const Ranks& ranks, const SweepOptions& options, std::vector<PointSpec> points,
+                         fs::path imageDir, fs::path cacheDir)
+    : ranks_(ranks),
+      options_(options),
       points_(std::move(points)),
       imageDir_(std::move(imageDir)),
       cacheDir_(std::move(cacheDir)),
@@ -103,6 +107,8 @@ void SweepRunner::fail(const std::string& message) {
   std::fprintf(stderr, "lgh-bench sweep: check failed: %s\n", message.c_str());
   failures_.push_back(message);
 }
+
+bool SweepRunner::mine(size_t point) const { return int(point % size_t(ranks_.size())) == ranks_.rank(); }
 
 void SweepRunner::tick() {
   ++done_;
@@ -172,6 +178,7 @@ Measurement SweepRunner::measureLgh(BenchRenderer& bench, const RenderSettings& 
   Measurement m;
   m.method = methods::kLgh;
   m.point = point;
+  bench.renderer().restartRandomSequence();  // the same frames on any rank (gatherPoints)
   RenderSettings s = point.applied(base);
   m.settings = s;
   m.buildMs = buildMs;
@@ -212,6 +219,7 @@ Measurement SweepRunner::measureLightcuts(BenchRenderer& bench, const RenderSett
   Measurement m;
   m.method = methods::kRtslc;
   m.point = point;
+  bench.renderer().restartRandomSequence();
   const RenderSettings s = point.applied(base);
   m.settings = s;
   m.buildMs = treeBuildMs;
@@ -298,6 +306,7 @@ class SweepRunner::Baselines {
 
 std::vector<Measurement> SweepRunner::Baselines::measure() {
   const size_t n = lights_.size();
+  renderer_.restartRandomSequence();  // whatever points rank 0 measured before
   warmUp();
   std::vector<Measurement> uniformRuns, uniformShadowedRuns;
   for (size_t m : runner_.options_.uniformLights)
@@ -468,11 +477,14 @@ Case SweepRunner::runCase(const SceneGpu& gpu, const reference::OcclusionScene& 
 
   ReferenceRequest request{options_.referencePixels, options_.referenceBudget, options_.threads, cacheDir_,
                            "reference " + spec.name + " " + shortCount(vplTarget) + " VPLs"};
+  request.tileSize = options_.tileSize;
   const reference::ReferenceImage ref =
-      obtainReference(occlusion, spec, renderer, fromGpuLights(lights), request, c.reference);
+      obtainReference(ranks_, occlusion, spec, base,
+                      ranks_.root() ? referenceInput(renderer, fromGpuLights(lights)) : reference::ReferenceInput{},
+                      request, c.reference);
   const CaseImages images{imageDir_, spec.name + "_" + shortCount(vplTarget) + "_"};
   const bool writeImages = options_.images && ref.full();
-  if (writeImages) {
+  if (writeImages && ranks_.root()) {
     writeReferenceNpy(images.dir / (images.prefix + "reference_shadowed.npy"), ref, ref.shadowed);
     writeReferenceNpy(images.dir / (images.prefix + "reference_unshadowed.npy"), ref, ref.unshadowed);
     const ImageRGBA albedo = renderer.readImage(Aov::Albedo);
@@ -487,14 +499,19 @@ Case SweepRunner::runCase(const SceneGpu& gpu, const reference::OcclusionScene& 
   const double treeBuildMs = c.treeBuildMs.empty() ? kNaN : spreadOf(c.treeBuildMs).median;
   tick();
   compileVariants(bench, base);
-  for (const PointSpec& point : points_) {
+  std::vector<std::pair<size_t, Measurement>> measured;
+  for (size_t i = 0; i < points_.size(); ++i) {
+    if (!mine(i)) continue;
+    const PointSpec& point = points_[i];
     const CaseImages* pointImages = writeImages ? &images : nullptr;
     Measurement m = point.lightcuts ? measureLightcuts(bench, base, point, treeBuildMs, &ref, pointImages)
                                     : measureLgh(bench, base, point, buildMs, &ref, pointImages);
     m.series = "grid";
-    c.measurements.push_back(std::move(m));
+    measured.emplace_back(i, std::move(m));
     tick();
   }
+  gatherPoints(c, std::move(measured));
+  if (!ranks_.root()) return c;
   for (Measurement& m : Baselines(*this, bench, gpu, base, lights, ref, writeImages ? &images : nullptr).measure())
     c.measurements.push_back(std::move(m));
   for (Measurement& m : c.measurements) {
@@ -539,6 +556,98 @@ Case SweepRunner::runScaling(const SceneGpu& gpu, const SceneSpec& spec) {
     }
   }
   return c;
+}
+
+namespace {
+
+// What a rank measured at a grid point, exactly (the point and its settings are known to rank 0).
+void writeMeasured(ByteWriter& w, const Measurement& m) {
+  w.string(m.method);
+  w.string(m.series);
+  w.pod(std::uint64_t(m.passMs.size()));
+  for (const auto& [pass, ms] : m.passMs) {
+    w.string(pass);
+    w.vector(ms);
+  }
+  for (const std::vector<double>* v : {&m.timeMs, &m.timeUnshadowedMs, &m.frameMs, &m.rmseUnshadowed, &m.psnrUnshadowed,
+                                       &m.rmseShadowed, &m.psnrShadowed, &m.rmseExactRatio})
+    w.vector(*v);
+  w.pod(m.buildMs);
+  w.pod(m.extrapolated);
+  w.pod(m.othersCpu);
+  w.string(m.image);
+  const LightStats& l = m.lights;
+  for (size_t v : {l.inputLights, l.pointLights, l.emitterSamples, l.vpls}) w.pod(std::uint64_t(v));
+  w.pod(l.levels);
+  w.vector(l.lightsPerLevel);
+  w.pod(l.rasterizedPerPixel);
+  w.pod(l.shadedPerPixel);
+  w.pod(l.maxRasterized);
+}
+
+bool readMeasured(ByteReader& r, Measurement& m) {
+  std::uint64_t passes = 0;
+  if (!r.string(m.method) || !r.string(m.series) || !r.pod(passes)) return false;
+  for (std::uint64_t i = 0; i < passes; ++i) {
+    std::string pass;
+    if (!r.string(pass) || !r.vector(m.passMs[pass])) return false;
+  }
+  for (std::vector<double>* v : {&m.timeMs, &m.timeUnshadowedMs, &m.frameMs, &m.rmseUnshadowed, &m.psnrUnshadowed,
+                                 &m.rmseShadowed, &m.psnrShadowed, &m.rmseExactRatio})
+    if (!r.vector(*v)) return false;
+  if (!r.pod(m.buildMs) || !r.pod(m.extrapolated) || !r.pod(m.othersCpu) || !r.string(m.image)) return false;
+  LightStats& l = m.lights;
+  for (size_t* v : {&l.inputLights, &l.pointLights, &l.emitterSamples, &l.vpls}) {
+    std::uint64_t value = 0;
+    if (!r.pod(value)) return false;
+    *v = size_t(value);
+  }
+  return r.pod(l.levels) && r.vector(l.lightsPerLevel) && r.pod(l.rasterizedPerPixel) && r.pod(l.shadedPerPixel) &&
+         r.pod(l.maxRasterized);
+}
+
+}  // namespace
+
+void SweepRunner::gatherPoints(Case& c, std::vector<std::pair<size_t, Measurement>> measured) {
+  // Each rank sends its points (index + what it measured) and the checks that failed on it.
+  ByteWriter w;
+  w.pod(std::uint64_t(failures_.size() - failuresSent_));
+  for (size_t i = failuresSent_; i < failures_.size(); ++i) w.string(failures_[i]);
+  failuresSent_ = failures_.size();
+  for (const auto& [index, m] : measured) {
+    w.pod(std::uint64_t(index));
+    writeMeasured(w, m);
+  }
+  const std::vector<std::string> fromRanks =
+      ranks_.distributed() ? ranks_.gather(w.bytes()) : std::vector<std::string>();
+  if (!ranks_.root()) return;
+  std::vector<std::optional<Measurement>> byPoint(points_.size());
+  for (auto& [index, m] : measured) byPoint[index] = std::move(m);
+  for (size_t rank = 1; rank < fromRanks.size(); ++rank) {
+    ByteReader r(fromRanks[rank]);
+    std::uint64_t failures = 0;
+    bool ok = r.pod(failures);
+    for (std::uint64_t i = 0; ok && i < failures; ++i) {
+      std::string f;
+      ok = r.string(f);
+      failures_.push_back("rank " + std::to_string(rank) + ": " + f);
+    }
+    while (ok && !r.atEnd()) {
+      std::uint64_t index = 0;
+      Measurement m;
+      ok = r.pod(index) && index < points_.size() && readMeasured(r, m);
+      if (!ok) break;
+      m.point = points_[size_t(index)];
+      m.settings = m.point.applied(c.base);
+      byPoint[size_t(index)] = std::move(m);
+    }
+    if (!ok) throw std::runtime_error("sweep: malformed measurements from rank " + std::to_string(rank));
+  }
+  for (size_t i = 0; i < byPoint.size(); ++i) {
+    if (!byPoint[i]) throw std::runtime_error("sweep: no rank measured point " + settingsLabel(points_[i]));
+    c.measurements.push_back(std::move(*byPoint[i]));
+    if (!mine(i)) tick();
+  }
 }
 
 void SweepRunner::check(const Case& c) {

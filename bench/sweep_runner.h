@@ -23,12 +23,18 @@
 
 namespace lgh::bench {
 
+class Ranks;
+
+// Under MPI (bench/ranks.h) every rank runs every case: the reference is computed by the ranks together,
+// grid point i is measured by rank i mod N on its own GL context, the baselines and the scaling series by
+// rank 0, which gathers the points' measurements and returns the cases in the order of one process (the
+// other ranks return cases without measurements and write nothing).
 class SweepRunner {
  public:
   // imageDir: where .npy images go (options.images); cacheDir: the reference cache (empty: none).
   // Needs a current GL context.
-  SweepRunner(const SweepOptions& options, std::vector<PointSpec> points, std::filesystem::path imageDir,
-              std::filesystem::path cacheDir);
+  SweepRunner(const Ranks& ranks, const SweepOptions& options, std::vector<PointSpec> points,
+              std::filesystem::path imageDir, std::filesystem::path cacheDir);
 
   // Units of work (progress ticks) of one scene.
   size_t workPerScene() const;
@@ -61,15 +67,20 @@ class SweepRunner {
   // One timed frame with the renderer's settings, after frames - 1 untimed ones accumulated from a
   // fresh history; records the others' share of the machine in m.
   FrameStats timedFrame(BenchRenderer& bench, Measurement& m, int frames = 1);
+  bool mine(size_t point) const;  // measured by this rank
+  // Rank 0: the other ranks' grid points into c.measurements (in point order), their failures into failures_.
+  void gatherPoints(Case& c, std::vector<std::pair<size_t, Measurement>> measured);
   void check(const Case& c);
   void fail(const std::string& message);
   void tick();
 
+  const Ranks& ranks_;
   const SweepOptions& options_;
   std::vector<PointSpec> points_;
   std::filesystem::path imageDir_, cacheDir_;
   QuietSampler sampler_;
   std::vector<std::string> failures_;
+  size_t failuresSent_ = 0;  // of failures_, those already gathered by rank 0
   ProgressBar* progress_ = nullptr;
   size_t done_ = 0;
   LghBuildPass buildPass_;

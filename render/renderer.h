@@ -105,6 +105,10 @@ class Renderer {
   // The next frame starts the accumulated history anew (render() does so itself when the lights or
   // the settings that the estimate depends on change).
   void restartAccumulation();
+  // The frames' random sequence (shadow picks, interleave rotation, lightcut descents) from its start:
+  // what follows no longer depends on the frames rendered before (lgh-bench sweep restarts it per point,
+  // so that a point measures the same on any MPI rank).
+  void restartRandomSequence() { frameIndex_ = 0; }
   ImageRGBA readImage(Aov aov) const;
   const GBuffer& gbuffer() const { return gbuffer_; }
   const gl::Texture2D& texture(Aov aov) const;

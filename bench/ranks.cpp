@@ -1,0 +1,123 @@
+#include "bench/ranks.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+#ifdef LGH_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace lgh::bench {
+namespace {
+
+const Ranks* theWorld = nullptr;
+
+#ifdef LGH_HAVE_MPI
+// Byte counts travel as int: a message is kept below 2 GiB (references are a few MB per case).
+int byteCount(size_t size) {
+  if (size > size_t(1) << 30) throw std::runtime_error("MPI message of " + std::to_string(size) + " bytes (> 1 GiB)");
+  return int(size);
+}
+#endif
+
+}  // namespace
+
+Ranks::Ranks(int& argc, char**& argv) {
+#ifdef LGH_HAVE_MPI
+  // Funneled: only the main thread calls MPI; the reference's Embree workers never do.
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  initialized_ = true;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  MPI_Comm host;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &host);
+  MPI_Comm_size(host, &hostSize_);
+  MPI_Comm_free(&host);
+#else
+  (void)argc, (void)argv;
+#endif
+  theWorld = this;
+}
+
+Ranks::~Ranks() {
+#ifdef LGH_HAVE_MPI
+  if (initialized_) MPI_Finalize();
+#endif
+  if (theWorld == this) theWorld = nullptr;
+}
+
+const Ranks& Ranks::world() {
+  static const Ranks single;  // before main's (or without one): rank 0 of 1
+  return theWorld ? *theWorld : single;
+}
+
+std::string Ranks::name() const { return "rank " + std::to_string(rank_) + " of " + std::to_string(size_); }
+
+void Ranks::broadcast(std::string& bytes) const {
+#ifdef LGH_HAVE_MPI
+  if (!distributed()) return;
+  unsigned long long size = bytes.size();
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+  bytes.resize(size_t(size));
+  MPI_Bcast(bytes.data(), byteCount(bytes.size()), MPI_BYTE, 0, MPI_COMM_WORLD);
+#else
+  (void)bytes;
+#endif
+}
+
+std::vector<std::string> Ranks::gather(const std::string& bytes) const {
+  std::vector<std::string> all;
+  if (!distributed()) {
+    all.push_back(bytes);
+    return all;
+  }
+#ifdef LGH_HAVE_MPI
+  int size = byteCount(bytes.size());
+  std::vector<int> sizes(root() ? size_t(size_) : 0), offsets;
+  MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  std::string joined;
+  if (root()) {
+    size_t total = 0;
+    for (int s : sizes) offsets.push_back(byteCount(total)), total += size_t(s);
+    joined.resize(total);
+  }
+  MPI_Gatherv(bytes.data(), size, MPI_BYTE, joined.data(), sizes.data(), offsets.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
+  for (size_t r = 0; r < sizes.size(); ++r) all.push_back(joined.substr(size_t(offsets[r]), size_t(sizes[r])));
+#endif
+  return all;
+}
+
+void Ranks::barrier() const {
+#ifdef LGH_HAVE_MPI
+  if (distributed()) MPI_Barrier(MPI_COMM_WORLD);
+#endif
+}
+
+void Ranks::abort(const std::string& message, int code) const {
+  if (distributed())
+    std::fprintf(stderr, "%s: %s\n", name().c_str(), message.c_str());
+  else
+    std::fprintf(stderr, "%s\n", message.c_str());
+  std::fflush(stderr);
+#ifdef LGH_HAVE_MPI
+  if (distributed()) MPI_Abort(MPI_COMM_WORLD, code);
+#endif
+  std::exit(code);
+}
+
+std::string mpiLibrary() {
+#ifdef LGH_HAVE_MPI
+  char version[MPI_MAX_LIBRARY_VERSION_STRING];
+  int length = 0;
+  MPI_Get_library_version(version, &length);
+  std::string text(version, size_t(length));
+  const size_t end = text.find_first_of("\n\r");
+  return text.substr(0, end);
+#else
+  return "none";
+#endif
+}
+
+}  // namespace lgh::bench
