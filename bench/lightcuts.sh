@@ -6,8 +6,11 @@
 # of n m^2 <= 32 nodes, the block a multiple of m), filter on/off; the uniform baselines kept. One sweep per
 # accumulated-frame count (FRAMES, default "1 16"), each into OUT/frames_N (sweep.csv, front.png, summary.md
 # with the equal-time table "LGH / lightcuts") through bench/plot_sweep.py.
+# Accumulated frames (FRAMES > 1) run a reduced grid unless FULL_GRID=1: LGH alpha 0.5/1/2, interleave 1/4,
+# k 1/4, filtered; lightcuts n 1/4/16, B8, interleave 1/2, filtered; one uniform size each (at 16 frames
+# the full grid would take about 16 x 25 min on 2 cores; the reduced one took 24 min).
 # Usage: bench/lightcuts.sh [BUILD_DIR] [OUT]   (OUT default: bench/results/lightcuts). REPEATS (default 3):
-# timed frames per point. One frame at 1 repeat takes about 20 min on 2 cores; 16 frames about 16 times that.
+# timed frames per point. One frame at 1 repeat takes about 20-25 min on 2 cores.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-$here/build}"
@@ -21,11 +24,15 @@ python=/usr/bin/python3
 [ -x "$python" ] || python=python3
 status=0
 for frames in ${FRAMES:-1 16}; do
+  grid=(--interleave 1,2,4 --shadow-samples 1,4,16 --filter on,off --rtslc-samples 1,2,4,8,16,32 --rtslc-block 1,8
+        --rtslc-interleave 1,2,4 --uniform-lights 64,256,1024 --uniform-shadowed-lights 4,16,64)
+  if [ "$frames" -gt 1 ] && [ -z "${FULL_GRID:-}" ]; then
+    grid=(--interleave 1,4 --shadow-samples 1,4 --filter on --rtslc-samples 1,4,16 --rtslc-block 8
+          --rtslc-interleave 1,2 --uniform-lights 256 --uniform-shadowed-lights 16)
+  fi
   "$build/lgh-bench" sweep --scene "$scenes/sponza_sun/sponza_sun.gltf@atrium" \
     --scene "$scenes/cornell_emissive/cornell_emissive.gltf" --vpls 10000,100000 \
-    --alpha 0.5,1,2 --start-level 1 --interleave 1,2,4 --shadow-samples 1,4,16 --filter on,off \
-    --rtslc-samples 1,2,4,8,16,32 --rtslc-block 1,8 --rtslc-interleave 1,2,4 --frames "$frames" \
-    --uniform-lights 64,256,1024 --uniform-shadowed-lights 4,16,64 --brute-force-limit 0 \
+    --alpha 0.5,1,2 --start-level 1 "${grid[@]}" --frames "$frames" --brute-force-limit 0 \
     --repeats "${REPEATS:-3}" --images false --cache-dir "$here/build-sweep/reference-cache" --out "$out/frames_$frames" ||
     status=1  # a failed check (NaN pixels, ...) is reported above; the tables are still made
   "$python" "$here/bench/plot_sweep.py" "$out/frames_$frames/sweep.csv" > /dev/null
