@@ -1,8 +1,10 @@
 #include "bench/ranks.h"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
+#include <thread>
 
 #ifdef LGH_HAVE_MPI
 #include <mpi.h>
@@ -14,6 +16,17 @@ namespace {
 const Ranks* theWorld = nullptr;
 
 #ifdef LGH_HAVE_MPI
+// Waits for a non-blocking collective, sleeping between tests: MPICH's blocking calls poll at 100% of a
+// core, which a rank waiting for another on the same host would take from the ranks still working (and
+// from their timed frames).
+void wait(MPI_Request& request) {
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+}
+
 // Byte counts travel as int: a message is kept below 2 GiB (references are a few MB per case).
 int byteCount(size_t size) {
   if (size > size_t(1) << 30) throw std::runtime_error("MPI message of " + std::to_string(size) + " bytes (> 1 GiB)");
@@ -59,9 +72,12 @@ void Ranks::broadcast(std::string& bytes) const {
 #ifdef LGH_HAVE_MPI
   if (!distributed()) return;
   unsigned long long size = bytes.size();
-  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+  MPI_Request request;
+  MPI_Ibcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD, &request);
+  wait(request);
   bytes.resize(size_t(size));
-  MPI_Bcast(bytes.data(), byteCount(bytes.size()), MPI_BYTE, 0, MPI_COMM_WORLD);
+  MPI_Ibcast(bytes.data(), byteCount(bytes.size()), MPI_BYTE, 0, MPI_COMM_WORLD, &request);
+  wait(request);
 #else
   (void)bytes;
 #endif
@@ -76,14 +92,18 @@ std::vector<std::string> Ranks::gather(const std::string& bytes) const {
 #ifdef LGH_HAVE_MPI
   int size = byteCount(bytes.size());
   std::vector<int> sizes(root() ? size_t(size_) : 0), offsets;
-  MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Request request;
+  MPI_Igather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD, &request);
+  wait(request);
   std::string joined;
   if (root()) {
     size_t total = 0;
     for (int s : sizes) offsets.push_back(byteCount(total)), total += size_t(s);
     joined.resize(total);
   }
-  MPI_Gatherv(bytes.data(), size, MPI_BYTE, joined.data(), sizes.data(), offsets.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
+  MPI_Igatherv(bytes.data(), size, MPI_BYTE, joined.data(), sizes.data(), offsets.data(), MPI_BYTE, 0, MPI_COMM_WORLD,
+               &request);
+  wait(request);
   for (size_t r = 0; r < sizes.size(); ++r) all.push_back(joined.substr(size_t(offsets[r]), size_t(sizes[r])));
 #endif
   return all;
@@ -91,7 +111,10 @@ std::vector<std::string> Ranks::gather(const std::string& bytes) const {
 
 void Ranks::barrier() const {
 #ifdef LGH_HAVE_MPI
-  if (distributed()) MPI_Barrier(MPI_COMM_WORLD);
+  if (!distributed()) return;
+  MPI_Request request;
+  MPI_Ibarrier(MPI_COMM_WORLD, &request);
+  wait(request);
 #endif
 }
 

@@ -314,6 +314,16 @@ int runSweepBench(SweepOptions options) {
   for (size_t m : options.uniformShadowedLights)
     if (m == 0) throw std::runtime_error("--uniform-shadowed-lights: subset sizes must be >= 1");
   for (const std::string& a : options.set) applySweepSetting(options.settings, a);
+  if (Ranks::world().ranksOnThisHost() > 1 && options.retries > 0) {
+    // The ranks of a host contend for its cores by design: a sample retaken "once the machine is quiet"
+    // would wait for the other ranks forever. Such a run's times are not comparable; its errors are.
+    if (Ranks::world().root())
+      std::fprintf(stderr,
+                   "lgh-bench sweep: %d ranks share this host: timed samples are not retaken, and the "
+                   "times are contended (the errors are not)\n",
+                   Ranks::world().ranksOnThisHost());
+    options.retries = 0;
+  }
   return runSweep(options, std::move(points));
 }
 
