@@ -38,6 +38,7 @@ class ByteWriter {
 class ByteReader {
  public:
   explicit ByteReader(const std::string& bytes) : bytes_(bytes) {}
+  explicit ByteReader(std::string&&) = delete;  // it keeps a reference: not to a temporary
   template <typename T>
   bool pod(T& value) {
     static_assert(std::is_trivially_copyable_v<T>);

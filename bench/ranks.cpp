@@ -20,10 +20,14 @@ const Ranks* theWorld = nullptr;
 // core, which a rank waiting for another on the same host would take from the ranks still working (and
 // from their timed frames).
 void wait(MPI_Request& request) {
+  // MPICH advances a collective only inside MPI calls: test continuously for a while (a large message
+  // moves in steps), then every 2 ms.
+  const auto start = std::chrono::steady_clock::now();
   for (int done = 0;;) {
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
     if (done) return;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (std::chrono::steady_clock::now() - start > std::chrono::milliseconds(100))
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
 }
 
@@ -56,6 +60,8 @@ Ranks::Ranks(int& argc, char**& argv) {
 
 Ranks::~Ranks() {
 #ifdef LGH_HAVE_MPI
+  // Ranks done before rank 0 wait here asleep (MPI_Finalize may synchronise at 100% of a core).
+  if (initialized_ && distributed()) barrier();
   if (initialized_) MPI_Finalize();
 #endif
   if (theWorld == this) theWorld = nullptr;

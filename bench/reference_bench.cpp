@@ -121,10 +121,11 @@ int runReferenceBench(const ReferenceBenchOptions& options) {
   else
     std::printf(
         "reference: %d tiles of %d px: %d computed (%d of them again: truncated, corrupt or another's), %d from the "
-        "cache; %d rank%s x %u threads\n",
+        "cache; %d rank%s x %u threads, %.1f s\n",
         tiles.tiles, options.tileSize, tiles.computed, tiles.redone, tiles.cached, tiles.ranks,
-        tiles.ranks == 1 ? "" : "s", tiles.threadsPerRank);
+        tiles.ranks == 1 ? "" : "s", tiles.threadsPerRank, tiles.seconds);
   for (const std::string& why : tiles.redoneWhy) std::printf("  computed again: %s\n", why.c_str());
+  // Seconds: the tiles' thread time over the threads (a resumed reference's earlier tiles included).
   const double raysPerSecond = ref.seconds > 0 ? double(ref.rays) / ref.seconds : 0.0;
   std::printf(
       "reference: %zu of %zu pixels (fraction %.4g), %s, %llu pairs, %llu shadow rays in %.1f s on %u "

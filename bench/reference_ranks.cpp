@@ -77,7 +77,7 @@ ReferenceImage computeTiledReference(const Ranks& ranks, const reference::Occlus
                                      TileCounts& counts, bool& fromCache) {
   if (options.tileSize < 1) throw std::invalid_argument("reference: the tile size must be >= 1");
   const bool keepTiles = !options.cacheDir.empty();
-  const TileGrid grid{input.width, input.height, options.tileSize};
+  const TileGrid grid{input.width, input.height, options.tileSize};  // rank 0's (the others' input is empty)
   counts = TileCounts{};
   counts.ranks = ranks.size();
 
@@ -116,7 +116,7 @@ ReferenceImage computeTiledReference(const Ranks& ranks, const reference::Occlus
   if (!ranks.root()) work = workFromBytes(message);
   fromCache = work.cached;
   if (work.cached) {
-    counts.tiles = grid.count();
+    counts.tiles = TileGrid{work.image.width, work.image.height, options.tileSize}.count();
     return std::move(work.image);
   }
 
@@ -176,8 +176,12 @@ ReferenceImage computeTiledReference(const Ranks& ranks, const reference::Occlus
     }
     image = reference::assembleTiles(workGrid, work.pixels, parts);
     counts.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    image.seconds = counts.seconds;
     image.threads = o.threads * unsigned(ranks.size());
+    // The thread-seconds of every tile (this run's and those an earlier run kept) over this run's
+    // threads: what an uninterrupted run would have taken, so that rays / seconds stays the rate.
+    double threadSeconds = 0;
+    for (const ReferenceImage& part : parts) threadSeconds += part.seconds * double(part.threads);
+    image.seconds = threadSeconds / double(image.threads);
     image.lightCount = work.input.lights.size();
     if (keepTiles) {
       reference::storeReference(options.cacheDir, work.description, image);
@@ -198,7 +202,8 @@ ReferenceImage computeTiledReference(const Ranks& ranks, const reference::Occlus
     ranks.broadcast(imageBytes);
     if (!ranks.root()) {
       ByteReader r(imageBytes);
-      if (!reference::readReference(r, image)) throw std::runtime_error("reference: malformed image message from rank 0");
+      if (!reference::readReference(r, image))
+        throw std::runtime_error("reference: malformed image message from rank 0");
     }
   }
   return image;

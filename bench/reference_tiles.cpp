@@ -75,14 +75,14 @@ std::optional<ReferenceImage> TileStore::load(int tile, const std::vector<std::u
   int index = -1;
   TileGrid::Rect rect;
   ReferenceImage part;
-  const bool read = r.pod(magic) && r.string(description) && r.pod(index) && r.pod(rect) &&
-                    readReference(r, part) && r.atEnd();
+  const bool read =
+      r.pod(magic) && r.string(description) && r.pod(index) && r.pod(rect) && readReference(r, part) && r.atEnd();
   if (!read) return fail("malformed");
   if (description != description_) return fail("of another reference");
   if (index != tile || !(rect == grid_.rect(tile)) || part.width != grid_.width || part.height != grid_.height)
     return fail("of another tile");
   if (part.pixels != grid_.pixelsOf(tile, pixels) || part.unshadowed.size() != part.pixels.size() ||
-      (!part.shadowed.empty() && part.shadowed.size() != part.pixels.size()))
+      part.shadowed.size() != part.pixels.size())  // the references are shadowed ones
     return fail("of other pixels");
   return part;
 }
@@ -155,6 +155,9 @@ ReferenceImage assembleTiles(const TileGrid& grid, const std::vector<std::uint32
   out.pixels = pixels;
   for (size_t t = 0; t < parts.size(); ++t) {
     const ReferenceImage& part = parts[t];
+    if (part.unshadowed.size() != part.pixels.size() ||
+        (!part.shadowed.empty() && part.shadowed.size() != part.pixels.size()))
+      throw std::invalid_argument("assembleTiles: a part's sums do not match its pixels");
     for (size_t i = 0; i < part.pixels.size(); ++i) {
       if (part.pixels[i] >= pixelCount || where[part.pixels[i]].first != ~0u)
         throw std::invalid_argument("assembleTiles: a pixel outside the image or in two tiles");

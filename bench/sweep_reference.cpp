@@ -67,13 +67,20 @@ reference::ReferenceImage obtainReference(const Ranks& ranks, const reference::O
                                           const SceneSpec& scene, const RenderSettings& settings,
                                           const reference::ReferenceInput& input, const ReferenceRequest& request,
                                           ReferenceInfo& info, TileCounts* tiles) {
-  // The subset and the key are rank 0's (the others' input is empty); computeTiledReference sends them.
-  double fraction = 1;
-  std::string key;
+  // The subset and the key are rank 0's; computeTiledReference sends them. A rank that rendered the frame
+  // too (the sweep's ranks measure against this reference) must have rendered rank 0's: the same key.
+  const bool given = !input.position.empty();
+  const double fraction = given ? pixelFraction(input, request) : 1.0;
+  const std::string key = given ? cacheKey(occlusion, scene, settings, input, fraction) : std::string();
+  std::string rootKey = key;
+  ranks.broadcast(rootKey);
+  if (given && key != rootKey)
+    ranks.abort(
+        "reference: this rank rendered another frame than rank 0 (its G-buffer, lights or settings differ; "
+        "its errors would be against another frame's reference). Its key:\n" +
+        key + "rank 0's:\n" + rootKey);
   std::vector<std::uint32_t> pixels;
   if (ranks.root()) {
-    fraction = pixelFraction(input, request);
-    key = cacheKey(occlusion, scene, settings, input, fraction);
     pixels = reference::choosePixels(input.width, input.height, fraction, 1);
     if (!request.cacheDir.empty()) info.cacheFile = (request.cacheDir / reference::cacheFileName(key)).string();
   }
@@ -88,7 +95,8 @@ reference::ReferenceImage obtainReference(const Ranks& ranks, const reference::O
   reference::ReferenceImage ref = computeTiledReference(ranks, occlusion, input, pixels, key, o, counts, info.cached);
   if (tiles) *tiles = counts;
   info.imagePixels = size_t(ref.width) * size_t(ref.height);
-  info.fraction = ranks.root() ? fraction : double(ref.pixels.size()) / double(std::max<size_t>(info.imagePixels, 1));
+  info.fraction = double(ref.pixels.size()) / double(std::max<size_t>(info.imagePixels, 1));
+  if (ranks.root()) info.fraction = fraction;  // the rounded fraction the key names
   info.pixels = ref.pixels.size();
   info.seconds = ref.seconds;
   info.rays = ref.rays;

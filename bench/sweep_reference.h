@@ -33,8 +33,9 @@ std::filesystem::path defaultReferenceCache();
 reference::ReferenceInput referenceInput(const Renderer& renderer, const std::vector<Light>& lights);
 
 // Collective (every rank calls it): the reference for rank 0's `input`, rendered with `settings`, on
-// every rank (the other ranks' input and settings are not read); fills info (and *tiles) with how it
-// was obtained.
+// every rank; fills info (and *tiles) with how it was obtained. Another rank may pass an empty input
+// (lgh-bench reference's do: they render nothing); one that passes its own must have rendered rank 0's
+// frame (the same key), or the run ends saying so.
 reference::ReferenceImage obtainReference(const Ranks& ranks, const reference::OcclusionScene& occlusion,
                                           const SceneSpec& scene, const RenderSettings& settings,
                                           const reference::ReferenceInput& input, const ReferenceRequest& request,

@@ -478,10 +478,8 @@ Case SweepRunner::runCase(const SceneGpu& gpu, const reference::OcclusionScene& 
   ReferenceRequest request{options_.referencePixels, options_.referenceBudget, options_.threads, cacheDir_,
                            "reference " + spec.name + " " + shortCount(vplTarget) + " VPLs"};
   request.tileSize = options_.tileSize;
-  const reference::ReferenceImage ref =
-      obtainReference(ranks_, occlusion, spec, base,
-                      ranks_.root() ? referenceInput(renderer, fromGpuLights(lights)) : reference::ReferenceInput{},
-                      request, c.reference);
+  const reference::ReferenceImage ref = obtainReference(
+      ranks_, occlusion, spec, base, referenceInput(renderer, fromGpuLights(lights)), request, c.reference);
   const CaseImages images{imageDir_, spec.name + "_" + shortCount(vplTarget) + "_"};
   const bool writeImages = options_.images && ref.full();
   if (writeImages && ranks_.root()) {
@@ -630,7 +628,7 @@ void SweepRunner::gatherPoints(Case& c, std::vector<std::pair<size_t, Measuremen
     for (std::uint64_t i = 0; ok && i < failures; ++i) {
       std::string f;
       ok = r.string(f);
-      failures_.push_back("rank " + std::to_string(rank) + ": " + f);
+      if (ok) failures_.push_back("rank " + std::to_string(rank) + ": " + f);
     }
     while (ok && !r.atEnd()) {
       std::uint64_t index = 0;

@@ -28,7 +28,8 @@ class Ranks;
 // Under MPI (bench/ranks.h) every rank runs every case: the reference is computed by the ranks together,
 // grid point i is measured by rank i mod N on its own GL context, the baselines and the scaling series by
 // rank 0, which gathers the points' measurements and returns the cases in the order of one process (the
-// other ranks return cases without measurements and write nothing).
+// other ranks return cases without measurements; with --images each rank writes its points' images into
+// the output folder, one every host should see).
 class SweepRunner {
  public:
   // imageDir: where .npy images go (options.images); cacheDir: the reference cache (empty: none).

@@ -81,6 +81,9 @@ reference::ReferenceImage cachedReference(const fs::path& cache, std::string* ke
 
 void expectSameReference(const reference::ReferenceImage& a, const reference::ReferenceImage& b) {
   ASSERT_FALSE(a.pixels.empty());
+  EXPECT_TRUE(a.full()) << a.pixels.size() << " of " << a.width * a.height << " pixels";  // every pixel, once
+  EXPECT_EQ(a.shadowed.size(), a.pixels.size());
+  EXPECT_GT(a.rays, 0u);
   EXPECT_EQ(a.pixels, b.pixels);
   EXPECT_EQ(a.unshadowed, b.unshadowed);  // bit for bit
   EXPECT_EQ(a.shadowed, b.shadowed);
@@ -148,10 +151,13 @@ void killAndResume(int ranks, int after, int corrupt, int truncate) {
   const std::vector<fs::path> tiles = tilePaths(cache);
   ASSERT_GE(int(tiles.size()), after) << killed.output;  // each rank stored `after` before it died (others may not)
   ASSERT_LT(int(tiles.size()), kTiles);
-  for (int i = 0; i < corrupt; ++i) {  // one byte in the middle of the sums
+  for (int i = 0; i < corrupt; ++i) {  // one bit flipped in the middle of the sums
     std::fstream io(tiles[size_t(i)], std::ios::in | std::ios::out | std::ios::binary);
-    io.seekp(std::streamoff(fs::file_size(tiles[size_t(i)]) / 2));
-    io.put('\x5a');
+    const std::streamoff middle = std::streamoff(fs::file_size(tiles[size_t(i)]) / 2);
+    io.seekg(middle);
+    const char c = char(io.get());
+    io.seekp(middle);
+    io.put(char(c ^ 0x04));
   }
   for (int i = corrupt; i < corrupt + truncate; ++i)
     fs::resize_file(tiles[size_t(i)], fs::file_size(tiles[size_t(i)]) / 3);

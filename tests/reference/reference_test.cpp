@@ -298,8 +298,14 @@ TEST(ReferenceTiles, BadTileFilesAreRefused) {
   EXPECT_EQ(store.load(1, pixels)->shadowed, part.shadowed);
   EXPECT_FALSE(store.load(0, pixels, &why));  // no file: absent, no reason
   EXPECT_TRUE(why.empty());
-  // Another key (another folder), another subset, another tile (a file renamed), another tile size.
-  EXPECT_FALSE(reference::TileStore(dir.path(), "key b\n", grid).load(1, pixels));
+  // Another key (another folder, and a file copied there), another subset, another tile (a file
+  // renamed), another tile size.
+  const reference::TileStore other(dir.path(), "key b\n", grid);
+  EXPECT_FALSE(other.load(1, pixels));
+  std::filesystem::create_directories(other.dir());
+  std::filesystem::copy_file(store.file(1), other.file(1));
+  EXPECT_FALSE(other.load(1, pixels, &why));
+  EXPECT_NE(why.find("another reference"), std::string::npos) << why;
   EXPECT_FALSE(store.load(1, reference::choosePixels(8, 4, 0.5, 3), &why));
   EXPECT_NE(why.find("other pixels"), std::string::npos) << why;
   std::filesystem::copy_file(store.file(1), store.file(0));
