@@ -11,7 +11,7 @@
 #SBATCH --nodes=8
 #SBATCH --ntasks-per-node=1
 #SBATCH --cpus-per-task=32
-#SBATCH --time=12:00:00
+#SBATCH --time=04:00:00
 #SBATCH --output=lgh-1m-%j.log
 set -euo pipefail
 here="${SLURM_SUBMIT_DIR:-$(cd "$(dirname "$0")/.." && pwd)}"
