@@ -4,6 +4,7 @@
 // the tile. The MPI cases skip, saying why, where lgh-bench was built without MPI.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -51,11 +52,24 @@ std::string mpiexec(int ranks) {
 #endif
 }
 
+// Why the MPI cases cannot run here, or "" when they can: lgh-bench built with MPI, and the launcher
+// able to start two processes on this machine (a container without a resolvable host name cannot).
+std::string mpiUnavailable() {
 #ifdef LGH_MPIEXEC
-#define REQUIRE_MPI()
+  static const std::string why = [] {
+    const fs::path log = fs::temp_directory_path() / ("lgh_mpiexec_probe_" + std::to_string(::getpid()) + ".txt");
+    const Process p = run(mpiexec(2) + "true", log);
+    fs::remove(log);
+    return p.exitCode == 0 ? std::string() : "`" + mpiexec(2) + "true` fails here: " + p.output;
+  }();
+  return why;
 #else
-#define REQUIRE_MPI() GTEST_SKIP() << "lgh-bench is built without MPI (libmpich-dev not found by CMake)"
+  return "lgh-bench is built without MPI (libmpich-dev not found by CMake)";
 #endif
+}
+
+#define REQUIRE_MPI() \
+  if (const std::string why = mpiUnavailable(); !why.empty()) GTEST_SKIP() << why
 
 // The Cornell box at 96 x 54 with ~1K VPLs: 24 tiles of 16 px, a second or two to compute.
 std::string referenceCommand(const fs::path& cache, const std::string& extra = "") {
