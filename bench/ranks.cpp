@@ -136,17 +136,4 @@ void Ranks::abort(const std::string& message, int code) const {
   std::exit(code);
 }
 
-std::string mpiLibrary() {
-#ifdef LGH_HAVE_MPI
-  char version[MPI_MAX_LIBRARY_VERSION_STRING];
-  int length = 0;
-  MPI_Get_library_version(version, &length);
-  std::string text(version, size_t(length));
-  const size_t end = text.find_first_of("\n\r");
-  return text.substr(0, end);
-#else
-  return "none";
-#endif
-}
-
 }  // namespace lgh::bench

@@ -43,7 +43,4 @@ class Ranks {
   bool initialized_ = false;
 };
 
-// Whether this build has MPI, and which ("MPICH 4.0.2", "none").
-std::string mpiLibrary();
-
 }  // namespace lgh::bench

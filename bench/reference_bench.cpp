@@ -106,11 +106,15 @@ int runReferenceBench(const ReferenceBenchOptions& options) {
                  cacheDir.empty() ? "none" : cacheDir.string().c_str());
   }
 
-  ReferenceRequest request{options.pixels, options.budget, options.threads, cacheDir,
-                           "reference " + spec.name + " " + shortCount(options.vpls) + " VPLs"};
-  request.tileSize = options.tileSize;
-  request.killAfterTiles = options.killAfterTiles;
-  request.failTile = options.failTile;
+  ReferenceRequest request;
+  request.pixels = options.pixels;
+  request.budget = options.budget;
+  request.run.tileSize = options.tileSize;
+  request.run.threads = options.threads;
+  request.run.cacheDir = cacheDir;
+  request.run.label = "reference " + spec.name + " " + shortCount(options.vpls) + " VPLs";
+  request.run.killAfterTiles = options.killAfterTiles;
+  request.run.failTile = options.failTile;
   ReferenceInfo info;
   TileCounts tiles;
   const reference::ReferenceImage ref = obtainReference(ranks, occlusion, spec, settings, input, request, info, &tiles);
@@ -122,7 +126,7 @@ int runReferenceBench(const ReferenceBenchOptions& options) {
     std::printf(
         "reference: %d tiles of %d px: %d computed (%d of them again: truncated, corrupt or another's), %d from the "
         "cache; %d rank%s x %u threads, %.1f s\n",
-        tiles.tiles, options.tileSize, tiles.computed, tiles.redone, tiles.cached, tiles.ranks,
+        tiles.tiles, options.tileSize, tiles.computed, int(tiles.redoneWhy.size()), tiles.cached, tiles.ranks,
         tiles.ranks == 1 ? "" : "s", tiles.threadsPerRank, tiles.seconds);
   for (const std::string& why : tiles.redoneWhy) std::printf("  computed again: %s\n", why.c_str());
   // Seconds: the tiles' thread time over the threads (a resumed reference's earlier tiles included).

@@ -74,7 +74,7 @@ unsigned threadsPerRank(const Ranks& ranks, unsigned requested) {
 ReferenceImage computeTiledReference(const Ranks& ranks, const reference::OcclusionScene& occlusion,
                                      const ReferenceInput& input, const std::vector<std::uint32_t>& pixels,
                                      const std::string& description, const TiledReferenceOptions& options,
-                                     TileCounts& counts, bool& fromCache) {
+                                     TileCounts& counts) {
   if (options.tileSize < 1) throw std::invalid_argument("reference: the tile size must be >= 1");
   const bool keepTiles = !options.cacheDir.empty();
   const TileGrid grid{input.width, input.height, options.tileSize};  // rank 0's (the others' input is empty)
@@ -114,7 +114,7 @@ ReferenceImage computeTiledReference(const Ranks& ranks, const reference::Occlus
   std::string message = ranks.root() ? toBytes(work) : std::string();
   ranks.broadcast(message);
   if (!ranks.root()) work = workFromBytes(message);
-  fromCache = work.cached;
+  counts.fromCache = work.cached;
   if (work.cached) {
     counts.tiles = TileGrid{work.image.width, work.image.height, options.tileSize}.count();
     return std::move(work.image);
@@ -190,7 +190,6 @@ ReferenceImage computeTiledReference(const Ranks& ranks, const reference::Occlus
   }
   counts.tiles = workGrid.count();
   counts.computed = int(work.missing.size());
-  counts.redone = int(counts.redoneWhy.size());
   counts.threadsPerRank = o.threads;
   std::string imageBytes;
   if (ranks.root()) {

@@ -40,11 +40,11 @@ struct TileCounts {
   int tiles = 0;     // of the image
   int cached = 0;    // whole files of an earlier run, used
   int computed = 0;  // computed by this run
-  int redone = 0;    // of those, computed again because their file was truncated, corrupt or another's
   int ranks = 1;
+  bool fromCache = false;  // the whole reference was in the cache: no tile computed or read
   unsigned threadsPerRank = 0;
-  double seconds = 0;  // wall time of the computed tiles
-  std::vector<std::string> redoneWhy;
+  double seconds = 0;                  // wall time of the computed tiles
+  std::vector<std::string> redoneWhy;  // the computed tiles whose file was truncated, corrupt or another's
 };
 
 // Collective: every rank calls it. `input`, `pixels` (ascending, the subset) and `description` (the
@@ -54,6 +54,6 @@ reference::ReferenceImage computeTiledReference(const Ranks& ranks, const refere
                                                 const reference::ReferenceInput& input,
                                                 const std::vector<std::uint32_t>& pixels,
                                                 const std::string& description, const TiledReferenceOptions& options,
-                                                TileCounts& counts, bool& fromCache);
+                                                TileCounts& counts);
 
 }  // namespace lgh::bench

@@ -82,17 +82,11 @@ reference::ReferenceImage obtainReference(const Ranks& ranks, const reference::O
   std::vector<std::uint32_t> pixels;
   if (ranks.root()) {
     pixels = reference::choosePixels(input.width, input.height, fraction, 1);
-    if (!request.cacheDir.empty()) info.cacheFile = (request.cacheDir / reference::cacheFileName(key)).string();
+    if (!request.run.cacheDir.empty()) info.cacheFile = (request.run.cacheDir / reference::cacheFileName(key)).string();
   }
-  TiledReferenceOptions o;
-  o.tileSize = request.tileSize;
-  o.threads = request.threads;
-  o.cacheDir = request.cacheDir;
-  o.label = request.label;
-  o.killAfterTiles = request.killAfterTiles;
-  o.failTile = request.failTile;
   TileCounts counts;
-  reference::ReferenceImage ref = computeTiledReference(ranks, occlusion, input, pixels, key, o, counts, info.cached);
+  reference::ReferenceImage ref = computeTiledReference(ranks, occlusion, input, pixels, key, request.run, counts);
+  info.cached = counts.fromCache;
   if (tiles) *tiles = counts;
   info.imagePixels = size_t(ref.width) * size_t(ref.height);
   info.fraction = double(ref.pixels.size()) / double(std::max<size_t>(info.imagePixels, 1));

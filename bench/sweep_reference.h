@@ -17,13 +17,9 @@
 namespace lgh::bench {
 
 struct ReferenceRequest {
-  double pixels = 0;               // pixel fraction; 0: automatic, all pixels unless that exceeds `budget` pairs
-  double budget = 1.6e9;           // pixel-light pairs of a full-image reference before subsetting
-  unsigned threads = 0;            // workers (0: one per hardware thread)
-  std::filesystem::path cacheDir;  // empty: no cache
-  std::string label;               // for the progress bar
-  int tileSize = 32;               // pixels per tile side
-  int killAfterTiles = -1, failTile = -1;  // test hooks (TiledReferenceOptions)
+  double pixels = 0;          // pixel fraction; 0: automatic, all pixels unless that exceeds `budget` pairs
+  double budget = 1.6e9;      // pixel-light pairs of a full-image reference before subsetting
+  TiledReferenceOptions run;  // tiles, threads, cache (empty: none), label, test hooks
 };
 
 // The cache both use by default: reference-cache beside the lgh-bench executable.

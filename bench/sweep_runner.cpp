@@ -475,9 +475,13 @@ Case SweepRunner::runCase(const SceneGpu& gpu, const reference::OcclusionScene& 
   const std::vector<gpu::GpuLight> lights =
       renderer.inputLights().lights.download<gpu::GpuLight>(renderer.inputLights().count);
 
-  ReferenceRequest request{options_.referencePixels, options_.referenceBudget, options_.threads, cacheDir_,
-                           "reference " + spec.name + " " + shortCount(vplTarget) + " VPLs"};
-  request.tileSize = options_.tileSize;
+  ReferenceRequest request;
+  request.pixels = options_.referencePixels;
+  request.budget = options_.referenceBudget;
+  request.run.tileSize = options_.tileSize;
+  request.run.threads = options_.threads;
+  request.run.cacheDir = cacheDir_;
+  request.run.label = "reference " + spec.name + " " + shortCount(vplTarget) + " VPLs";
   const reference::ReferenceImage ref = obtainReference(
       ranks_, occlusion, spec, base, referenceInput(renderer, fromGpuLights(lights)), request, c.reference);
   const CaseImages images{imageDir_, spec.name + "_" + shortCount(vplTarget) + "_"};
