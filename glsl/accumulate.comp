@@ -19,14 +19,17 @@
 // lum(sum E / N), the mean of the irradiances the frames' T were drawn against (unresolved: with
 // interleaving the tiles the pixel has seen, which before N >= n^2 are not all of them), so that the
 // filter's mean weight sum(T) / sum(lum E) compares the same lights' sums.
-// The weight's variance is the larger of the frames' own, sum(var T) / N^2, and what the heaviest frame
-// alone adds to the mean's squared error, (T_h - D C_h)^2 / N^2 with D = sum T / sum C: with k = 1 a
-// frame's var(T_f) is the prior alone (one sample shows no spread), so an estimate resting on one heavy
-// sample was trusted as typical (measured: 16 frames at 4 x 4, k = 1, the correction 2.5x the uncorrected
-// error, docs/measurements.md). The frames' whole spread as a ratio estimator's, sum (T_f - D C_f)^2 /
-// (N (N - 1)), also held what the tiles' lights add, which the rotated dealing stratifies, and took back
-// half the correction's gain at 16 frames (Sponza 10K 4x4 k = 16 raw: 0.086 -> 0.121, the heaviest frame
-// alone 0.088; uncorrected 0.151).
+// The weight's variance is the larger of the frames' own, sum(var T) / N^2, and the part of what the
+// heaviest frame alone adds to the mean's squared error that its own variance cannot show,
+// (T_h - D C_h)^2 / (k N^2) with D = sum T / sum C: a frame whose T rests on one heavy sample W among its
+// k deviates by about W / k, while its samples' spread gives var(T_f) about (k - 1) W^2 / k^3, all but
+// 1 / k of that squared deviation. With k = 1 a frame's var(T_f) is the prior alone, so an estimate
+// resting on one heavy sample was trusted as typical (measured: 16 frames at 4 x 4, k = 1, the correction
+// 2.5x the uncorrected error); the whole residual at k = 4 also held what a tile's lights add, and cost
+// Sponza 10K's 4 x 4 16 frames 4% (docs/measurements.md). The frames' whole spread as a ratio
+// estimator's, sum (T_f - D C_f)^2 / (N (N - 1)), also held what the tiles' lights add, which the rotated
+// dealing stratifies, and took back half the correction's gain at 16 frames (Sponza 10K 4x4 k = 16 raw:
+// 0.086 -> 0.121, the heaviest frame alone 0.088; uncorrected 0.151).
 // With N = 1 the outputs are this frame's values bit for bit.
 // Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
 // irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, over
@@ -137,8 +140,9 @@ void main() {
                                    : texelFetch(rawIrradiance, pixel, 0).rgb;
   vec4 rawRatio = imageLoad(ratio, pixel);
   float l = max(luminance(e), 0.0);
-  float r = accum.shadowed != 0u ? rawRatio.r : 1.0, weight = accum.shadowed != 0u ? max(rawRatio.b, 0.0) : l;
-  float variance = accum.shadowed != 0u ? max(rawRatio.g, 0.0) : 0.0;
+  bool shadowed = accum.shadowSamples != 0u;
+  float r = shadowed ? rawRatio.r : 1.0, weight = shadowed ? max(rawRatio.b, 0.0) : l;
+  float variance = shadowed ? max(rawRatio.g, 0.0) : 0.0;
   irradianceSum += vec4(e, 1.0);
   ratioSum += vec4(weight * r, weight, variance, 0.0);
   if (l > 0.0 && (heaviest.g <= 0.0 || weight * heaviest.g > heaviest.r * l)) heaviest = vec4(weight, l, 0.0, 0.0);
@@ -150,13 +154,13 @@ void main() {
   // Before n^2 frames the sum lacks some of the lights' tiles: stage 1 resolves it.
   if (frames >= float(accum.tilesPerAxis * accum.tilesPerAxis))
     imageStore(irradiance, pixel, vec4(irradianceSum.rgb / frames, imageLoad(irradiance, pixel).a));
-  if (accum.shadowed != 0u) {
+  if (shadowed) {
     // sum(T) = 0: no frame's samples weighed anything, and each frame's ratio was 1 (shadow_rays.comp).
     float accumulated = ratioSum.g > 0.0 ? ratioSum.r / ratioSum.g : rawRatio.r;
     float irradianceLuminance = luminance(irradianceSum.rgb);  // sum C
     float meanWeight = irradianceLuminance > 0.0 ? ratioSum.g / irradianceLuminance : 1.0;  // D
     float residual = heaviest.r - meanWeight * heaviest.g;
-    float heaviestShare = residual * residual / (frames * frames);
+    float heaviestShare = residual * residual / (float(accum.shadowSamples) * frames * frames);
     if (isnan(heaviestShare)) heaviestShare = uintBitsToFloat(0x7f800000u);  // sum C underflows: D is unknown
     float weightVariance = max(ratioSum.b / (frames * frames), heaviestShare);
     imageStore(ratio, pixel, vec4(clamp(accumulated, 0.0, 1.0), weightVariance, ratioSum.g / frames, frames));

@@ -238,8 +238,8 @@ FrameStats Renderer::render(const CameraView& view) {
     if (accumulating())
       timed(passes::kAccumulation, [&] {
         const TileLayout layout = TileLayout::of(1, settings_.image.width, settings_.image.height);
-        accumulationPass_.execute({gbuffer_, view, irradiance_, layout, false, kInterleaveResolve},
-                                  settings_.accumulation, {irradiance_, rawRatio_, sampledIrradiance_});
+        accumulationPass_.execute({gbuffer_, view, irradiance_, layout, 0, kInterleaveResolve}, settings_.accumulation,
+                                  {irradiance_, rawRatio_, sampledIrradiance_});
       });
     // The shadow filter's a-trous passes over the irradiance itself (less of it over more frames).
     timed(passes::kIrradianceFilter, [&] {
@@ -286,8 +286,9 @@ FrameStats Renderer::render(const CameraView& view) {
     // the last frame; the accumulated estimates replace them for the filter and the composite.
     if (accumulating())
       timed(passes::kAccumulation, [&] {
-        accumulationPass_.execute({gbuffer_, view, target.irradiance, target.layout, shadowed(), kInterleaveResolve},
-                                  settings_.accumulation, {irradiance_, rawRatio_, sampledIrradiance_});
+        accumulationPass_.execute(
+            {gbuffer_, view, target.irradiance, target.layout, settings_.shadows.samples, kInterleaveResolve},
+            settings_.accumulation, {irradiance_, rawRatio_, sampledIrradiance_});
       });
     // A-trous filter over the ratio, as a ratio estimator with the ratio's weights (less of it where the
     // ratio holds more frames), and the mean weight that corrects the irradiance.

@@ -15,10 +15,10 @@ GPU_STRUCT(AccumulationUniforms) {
   vec3 previousCameraPosition;
   float maxFrames;  // history length cap
 
-  uint stage;         // kAccumulate*
-  uint hasHistory;    // 0: restart (every pixel's history is empty)
-  uint shadowed;      // the ratio image holds this frame's raw ratio
-  uint tilesPerAxis;  // n
+  uint stage;          // kAccumulate*
+  uint hasHistory;     // 0: restart (every pixel's history is empty)
+  uint shadowSamples;  // k: the ratio image holds this frame's raw ratio from k samples (0: unshadowed)
+  uint tilesPerAxis;   // n
 
   uint tileWidth;
   uint tileHeight;

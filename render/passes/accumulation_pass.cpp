@@ -39,7 +39,7 @@ void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationS
   sums.maxFrames = float(settings.maxFrames);
   sums.stage = gpu::kAccumulateSums;
   sums.hasHistory = hasHistory_ ? 1u : 0u;
-  sums.shadowed = in.shadowed ? 1u : 0u;
+  sums.shadowSamples = unsigned(std::max(in.shadowSamples, 0));
   sums.tilesPerAxis = unsigned(in.layout.tilesPerAxis);
   sums.tileWidth = unsigned(in.layout.tileSize.x);
   sums.tileHeight = unsigned(in.layout.tileSize.y);

@@ -33,7 +33,7 @@ struct AccumulationInputs {
   const CameraView& view;                         // this frame's camera (the next frame reprojects through it)
   const gl::Texture2D& rawIrradiance;             // in `layout`
   TileLayout layout;                              // tiled when layout.tilesPerAxis > 1
-  bool shadowed = false;                          // the ratio target holds this frame's raw ratio (else it is not read)
+  int shadowSamples = 0;                          // k: the ratio target holds this frame's raw ratio (0: not read)
   InterleaveFilter resolve = kInterleaveResolve;  // the weights of the resolve of incomplete sums
 };
 

@@ -8,6 +8,7 @@
 
 #include "exact_irradiance.h"
 #include "gl_test_env.h"
+#include "lgh/light.h"
 #include "render/image_compare.h"
 #include "render/renderer.h"
 #include "render/scene/scene_gpu.h"
@@ -50,38 +51,48 @@ class AccumulationTest : public GLTest {
 // The accumulation is exactly the ratio estimator over the frames: after N still frames the ratio is
 // sum T_f r_f / sum T_f and the irradiance sum E_f / N of the same N frames rendered one by one (same
 // seeds), to float round-off. An exponential moving average, or a sum of every other frame, would keep
-// the error falling and fail this. Brute-force light pass: only the shadows differ from the exact image.
+// the error falling and fail this. The weight is sum T_f / N and its variance the larger of the frames'
+// own, sum var(T_f) / N^2, and the heaviest frame's residual over k, (T_h - D C_h)^2 / (k N^2) with
+// D = sum T / sum C, h the frame of largest T_f / C_f (accumulate.comp): k = 2 and 300 VPLs, so that heavy
+// samples put about 8% of the pixels on the floor, and a floor without the 1 / k, or one from another
+// frame, fails it.
 TEST_F(AccumulationTest, StillFramesAccumulateExactlyTheFramesRatioEstimator) {
   const SceneGpu gpu(scene);
-  settings.image.width = 64;  // brute force: kept small
+  settings.image.width = 64;
   settings.image.height = 36;
-  settings.inputLights.vpls = 1000;
-  settings.lightPass.bruteForce = true;
-  settings.shadows.samples = 1;
+  settings.inputLights.vpls = 300;
+  settings.shadows.samples = 2;
   settings.filter.passes = 0;
   constexpr int kFrames = 16;
   RenderSettings single = settings;
   single.accumulation.enabled = false;
   Renderer frames(gpu, single), accumulating(gpu, settings);
   const size_t pixels = size_t(settings.image.width) * settings.image.height;
-  std::vector<double> weightedRatio(pixels), weight(pixels), lastRatio(pixels);
+  std::vector<double> weightedRatio(pixels), weight(pixels), weightVariance(pixels), lastRatio(pixels);
+  std::vector<double> sampledSum(pixels), heaviestWeight(pixels), heaviestSampled(pixels);
   std::vector<glm::dvec3> irradiance(pixels);
   for (int f = 0; f < kFrames; ++f) {
     frames.render(view());
     accumulating.render(view());
-    const std::vector<glm::vec4> raw = frames.texture(Aov::Ratio).readRGBA();  // r: ratio, b: its weight T
+    // r: ratio, g: var(T), b: its weight T
+    const std::vector<glm::vec4> raw = frames.texture(Aov::Ratio).readRGBA();
     const std::vector<glm::vec4> e = frames.texture(Aov::Irradiance).readRGBA();
     for (size_t i = 0; i < pixels; ++i) {
-      const double t = std::max(raw[i].b, 0.0f);
+      const double t = std::max(raw[i].b, 0.0f), c = std::max(luminance(glm::dvec3(e[i])), 0.0);
       weightedRatio[i] += t * raw[i].r, weight[i] += t, lastRatio[i] = raw[i].r;
+      weightVariance[i] += std::max(raw[i].g, 0.0f);
       irradiance[i] += glm::dvec3(e[i]);
+      sampledSum[i] += c;
+      if (c > 0 && (heaviestSampled[i] <= 0 || t * heaviestSampled[i] > heaviestWeight[i] * c))
+        heaviestWeight[i] = t, heaviestSampled[i] = c;
     }
   }
   const std::vector<glm::vec4> ratio = accumulating.texture(Aov::Ratio).readRGBA();
   const std::vector<glm::vec4> e = accumulating.texture(Aov::Irradiance).readRGBA();
   const std::vector<glm::vec4> position = accumulating.gbuffer().position.readRGBA();
-  double worstRatio = 0, worstIrradiance = 0;
-  size_t surfaces = 0, weighed = 0;
+  const double n = kFrames, k = settings.shadows.samples;
+  double worstRatio = 0, worstIrradiance = 0, worstWeight = 0, worstVariance = 0;
+  size_t surfaces = 0, weighed = 0, floored = 0;
   for (size_t i = 0; i < pixels; ++i) {
     if (position[i].w == 0) continue;
     ++surfaces;
@@ -89,17 +100,28 @@ TEST_F(AccumulationTest, StillFramesAccumulateExactlyTheFramesRatioEstimator) {
     const double expected = weight[i] > 0 ? std::clamp(weightedRatio[i] / weight[i], 0.0, 1.0) : lastRatio[i];
     worstRatio = std::max(worstRatio, std::abs(ratio[i].r - expected));
     EXPECT_EQ(ratio[i].a, float(kFrames)) << "pixel " << i;
-    const glm::dvec3 mean = irradiance[i] / double(kFrames);
+    const glm::dvec3 mean = irradiance[i] / n;
     const double scale = std::max({mean.r, mean.g, mean.b, 1e-12});
     worstIrradiance = std::max(worstIrradiance, glm::length(glm::dvec3(e[i]) - mean) / scale);
+    if (!(weight[i] > 0 && sampledSum[i] > 0)) continue;
+    worstWeight = std::max(worstWeight, std::abs(ratio[i].b - weight[i] / n) / (weight[i] / n));
+    const double meanWeight = weight[i] / sampledSum[i];  // D
+    const double residual = heaviestWeight[i] - meanWeight * heaviestSampled[i];
+    const double framesVariance = weightVariance[i] / (n * n), heaviestShare = residual * residual / (k * n * n);
+    const double variance = std::max(framesVariance, heaviestShare);
+    floored += heaviestShare > framesVariance;
+    worstVariance = std::max(worstVariance, std::abs(ratio[i].g - variance) / variance);
   }
   std::printf(
-      "  %zu surface pixels (%zu weighed): largest difference from the frames' estimator: ratio %.2e, "
-      "irradiance %.2e relative\n",
-      surfaces, weighed, worstRatio, worstIrradiance);
+      "  %zu surface pixels (%zu weighed, %zu with the heaviest frame's floor): largest difference from the "
+      "frames' estimator: ratio %.2e, irradiance %.2e, weight %.2e, weight variance %.2e relative\n",
+      surfaces, weighed, floored, worstRatio, worstIrradiance, worstWeight, worstVariance);
   EXPECT_GT(weighed, surfaces / 2);
-  EXPECT_LT(worstRatio, 1e-5);  // float sums of 16 terms in [0, 1]
+  EXPECT_GT(floored, weighed / 100);  // else the floor goes untested
+  EXPECT_LT(worstRatio, 1e-5);        // float sums of 16 terms in [0, 1]
   EXPECT_LT(worstIrradiance, 1e-5);
+  EXPECT_LT(worstWeight, 1e-5);
+  EXPECT_LT(worstVariance, 1e-3);  // a difference of two float sums, squared
 }
 
 // The error of the accumulated shadows against one shadow ray per light and pixel falls as independent
