@@ -48,6 +48,10 @@ class LightBuilds {
   }
   void builtHierarchy(int levels) { hierarchyLevels_ = levels; }
   void builtLightTree() { lightTreeBuilt_ = true; }
+  // Records what the renderer freed (its method or feature off): built again when next wanted.
+  void freedInputLights() { *this = LightBuilds(); }
+  void freedHierarchy() { hierarchyLevels_.reset(); }
+  void freedLightTree() { lightTreeBuilt_ = false; }
 
  private:
   std::optional<InputLightKey> inputLights_;  // what S0 was built from; none yet

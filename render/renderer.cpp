@@ -87,10 +87,11 @@ Camera resolveCamera(const Scene& scene, const RenderSettings& settings) {
 Renderer::Renderer(const SceneGpu& scene, const RenderSettings& settings)
     : scene_(scene),
       settings_(settings),
-      frameUniforms_(sizeof(gpu::FrameUniforms)),
+      frameUniforms_({passes::kFrameSetup, "frame uniforms"}, sizeof(gpu::FrameUniforms)),
       inputLightsPass_(scene),
       buildPass_(GLAD_GL_NV_shader_atomic_float != 0),
       lightPass_(GLAD_GL_NV_shader_atomic_float != 0) {
+  gl::memory().setLimit(size_t(double(settings.gpuMemoryLimit) * 1e6));
   allocateTargets();
 }
 
@@ -99,30 +100,93 @@ void Renderer::setSettings(const RenderSettings& settings) {
                        settings.image.height != settings_.image.height ||
                        settings.lightPass.interleave != settings_.lightPass.interleave;
   settings_ = settings;
-  if (resized) {
-    allocateTargets();
-    restartAccumulation();
-  }
+  gl::memory().setLimit(size_t(double(settings.gpuMemoryLimit) * 1e6));
+  if (resized) restartAccumulation();
+}
+
+bool Renderer::Configuration::operator==(const Configuration& o) const {
+  return width == o.width && height == o.height && interleave == o.interleave && lgh == o.lgh &&
+         hierarchy == o.hierarchy && shadowed == o.shadowed && lightcuts == o.lightcuts && overdraw == o.overdraw &&
+         accumulating == o.accumulating;
+}
+
+Renderer::Configuration Renderer::configuration() const {
+  Configuration c;
+  c.width = settings_.image.width;
+  c.height = settings_.image.height;
+  c.interleave = settings_.lightPass.interleave;
+  c.lightcuts = settings_.indirect && lightcuts();
+  c.lgh = settings_.indirect && !c.lightcuts;
+  c.hierarchy = c.lgh && !settings_.lightPass.bruteForce;
+  c.shadowed = c.lgh && shadowed();
+  c.overdraw = c.lgh && settings_.lightPass.overdraw;
+  c.accumulating = accumulating();
+  return c;
 }
 
 void Renderer::allocateTargets() {
-  const int w = settings_.image.width, h = settings_.image.height;
+  const Configuration c = configured_ = configuration();
+  const int w = c.width, h = c.height;
+  auto make = [&](const char* owner, const char* name, GLenum format) {
+    return gl::Texture2D({owner, name, kImageSize}, w, h, format);
+  };
+  // Old targets go before new ones are counted (a resize holds one set at a time).
+  gbuffer_ = {};
   gbuffer_ = GBuffer(w, h);
-  direct_ = gl::Texture2D(w, h, GL_RGBA32F);
-  tiles_ = interleaved() ? Tiles(TileLayout::of(settings_.lightPass.interleave, w, h)) : Tiles();
-  irradiance_ = gl::Texture2D(w, h, GL_RGBA32F);
-  fragmentCounts_ = gl::Texture2D(w, h, GL_R32UI);
-  fragmentCounts_.clearUint(0);
-  rawRatio_ = gl::Texture2D(w, h, GL_RGBA32F);
-  rawRatio_.clear(glm::vec4(1.0f));
-  sampledIrradiance_ = gl::Texture2D(w, h, GL_R32F);
-  sampledIrradiance_.clear(glm::vec4(0.0f));
-  visibility_ = gl::Texture2D(w, h, GL_RGBA32F);
-  visibility_.clear(glm::vec4(1.0f));
-  filteredIrradiance_ = gl::Texture2D(w, h, GL_RGBA32F);
-  indirect_ = gl::Texture2D(w, h, GL_RGBA32F);
-  final_ = gl::Texture2D(w, h, GL_RGBA32F);
+  direct_ = make(passes::kDirectLight, "direct", GL_RGBA32F);
+  indirect_ = make(passes::kComposite, "indirect", GL_RGBA32F);
+  final_ = make(passes::kComposite, "final", GL_RGBA32F);
+  // The rest only where the configuration's passes write them.
+  tiles_ = {};
+  if (c.lgh && c.interleave > 1) tiles_ = Tiles(TileLayout::of(c.interleave, w, h), c.overdraw);
+  irradiance_ = {};
+  if (c.lgh || c.lightcuts)
+    irradiance_ = make(c.lgh ? passes::kLightPass : passes::kLightcutSampling, "irradiance", GL_RGBA32F);
+  fragmentCounts_ = {};
+  if (c.overdraw) {
+    fragmentCounts_ = make(passes::kLightPass, "fragment counts", GL_R32UI);
+    fragmentCounts_.clearUint(0);
+  }
+  // The raw ratio and the sampled irradiance: the shadow rays' outputs, and the accumulation's (for the
+  // lightcuts an unused ratio beside their irradiance).
+  for (gl::Texture2D* t : {&rawRatio_, &sampledIrradiance_, &visibility_, &filteredIrradiance_, &neutralAov_}) *t = {};
+  if (c.shadowed || c.accumulating) {
+    rawRatio_ = make(passes::kShadowRays, "ratio", GL_RGBA32F);
+    rawRatio_.clear(glm::vec4(1.0f));
+    sampledIrradiance_ = make(passes::kShadowRays, "sampled irradiance", GL_R32F);
+    sampledIrradiance_.clear(glm::vec4(0.0f));
+  }
+  if (c.shadowed) visibility_ = make(passes::kShadowFilter, "visibility", GL_RGBA32F);
+  if (c.lightcuts) filteredIrradiance_ = make(passes::kIrradianceFilter, "filtered irradiance", GL_RGBA32F);
+  releaseUnused();
   gl::checkErrors("allocating render targets");
+}
+
+void Renderer::releaseUnused() {
+  const Configuration& c = configured_;
+  if (!c.accumulating) accumulationPass_.release();
+  if (!c.shadowed) {
+    shadowSlots_ = {};
+    shadowTargets_ = {};
+    shadowTargetsPass_.release();
+    shadowRayPass_.release();
+    shadowFilterPass_.release();
+  }
+  if (!c.lgh) lightPass_.release();
+  if (!c.hierarchy) {
+    hierarchy_ = {};
+    builds_.freedHierarchy();
+  }
+  if (!c.lightcuts) {
+    lightTree_ = {};
+    builds_.freedLightTree();
+    rtslcPass_.release();
+    irradianceFilterPass_.release();
+  }
+  if (!c.lgh && !c.lightcuts) {
+    inputLights_ = {};
+    builds_.freedInputLights();
+  }
 }
 
 float Renderer::clampDistance() const {
@@ -215,6 +279,7 @@ void Renderer::uploadFrameUniforms(const CameraView& view) {
 
 FrameStats Renderer::render(const CameraView& view) {
   FrameStats stats;
+  if (configuration() != configured_) allocateTargets();
   uploadFrameUniforms(view);
   // Surfaces seen by the camera: position, normal, albedo, emission.
   timed(passes::kGBuffer, [&] { gbufferPass_.execute(scene_, gbuffer_); });
@@ -247,19 +312,19 @@ FrameStats Renderer::render(const CameraView& view) {
       irradianceFilterPass_.execute(gbuffer_, irradiance_, {settings_.filter, fade, stats.accumulatedFrames},
                                     filteredIrradiance_);
     });
-    visibility_.clear(glm::vec4(1.0f));  // the irradiance is shadowed already (AOV visibility)
     stats.lights = lightStats({});
   } else if (settings_.indirect) {
     resolveShadows();
     const LightPassOptions options = lightPassOptions();
     // Each grid light's shadow-ray targets: input lights drawn by their share of its importance (the light
     // pass reads them too, for grid lights it cannot select).
-    shadowTargets_.races = 0;
     if (drawsShadowTargets())
       timed(passes::kShadowTargets, [&] {
         shadowTargetsPass_.execute({inputLights_.lights, inputLights_.count, hierarchy_}, shadowEstimator_.drawnTargets,
                                    options.frameSeed, shadowTargets_);
       });
+    else
+      shadowTargets_ = {};  // the rays aim at the clusters' centres
     const LightPassTarget target = lightPassTarget();
     LightPassDraws draws;
     // n x n interleaving: the surfaces as n^2 tiles, each shaded by 1/n^2 of the lights.
@@ -397,6 +462,20 @@ void Renderer::measureOverdraw(LightStats& stats) const {
 }
 
 const gl::Texture2D& Renderer::texture(Aov aov) const {
+  const gl::Texture2D& t = target(aov);
+  if (t) return t;
+  const bool counts = aov == Aov::Overdraw;
+  const float value = aov == Aov::Ratio || aov == Aov::Visibility ? 1.0f : 0.0f;
+  neutralAov_ = gl::Texture2D({passes::kComposite, "neutral AOV", kImageSize}, settings_.image.width,
+                              settings_.image.height, counts ? GL_R32UI : GL_RGBA32F);
+  if (counts)
+    neutralAov_.clearUint(0);
+  else
+    neutralAov_.clear(glm::vec4(value));
+  return neutralAov_;
+}
+
+const gl::Texture2D& Renderer::target(Aov aov) const {
   switch (aov) {
     case Aov::Final:
       return final_;
@@ -427,12 +506,12 @@ const gl::Texture2D& Renderer::texture(Aov aov) const {
 ImageRGBA Renderer::readImage(Aov aov) const {
   if (aov == Aov::Overdraw) {
     // Fragments per pixel as a heat map scaled to the frame's largest count (the paper's Fig. 5).
-    const std::vector<GLuint> counts = fragmentCounts_.readUint();
+    const std::vector<GLuint> counts = texture(aov).readUint();
     const GLuint largest = std::max<GLuint>(1, *std::max_element(counts.begin(), counts.end()));
     std::vector<glm::vec4> colors(counts.size());
     for (size_t i = 0; i < counts.size(); ++i)
       colors[i] = glm::vec4(gpu::heatColor(float(counts[i]) / float(largest)), 1.0f);
-    return fromGLRows(fragmentCounts_.width(), fragmentCounts_.height(), colors);
+    return fromGLRows(settings_.image.width, settings_.image.height, colors);
   }
   const gl::Texture2D& t = texture(aov);
   std::vector<glm::vec4> pixels = t.readRGBA();

@@ -22,6 +22,7 @@
 #include "render/passes/lgh_build_pass.h"
 #include "render/passes/light_tree_pass.h"
 #include "render/passes/light_volume_pass.h"
+#include "render/passes/pass_names.h"
 #include "render/passes/rtslc_pass.h"
 #include "render/passes/shadow_filter_pass.h"
 #include "render/passes/shadow_ray_pass.h"
@@ -29,27 +30,6 @@
 #include "render/settings.h"
 
 namespace lgh {
-
-// The passes' names in FrameStats::passes, in frame order (benchmarks and the viewer look them up).
-namespace passes {
-inline constexpr const char* kGBuffer = "G-buffer";
-inline constexpr const char* kDirectLight = "direct light";
-inline constexpr const char* kInputLights = "input lights";
-inline constexpr const char* kLghBuild = "LGH build";
-inline constexpr const char* kInterleaveSplit = "interleave split";
-inline constexpr const char* kLightPass = "light pass";
-inline constexpr const char* kInterleaveResolve = "interleave resolve";
-inline constexpr const char* kShadowTargets = "shadow targets";
-inline constexpr const char* kShadowRays = "shadow rays";
-inline constexpr const char* kAccumulation = "accumulation";
-inline constexpr const char* kShadowFilter = "shadow filter";
-inline constexpr const char* kComposite = "composite";
-// The stochastic lightcuts (--indirect-method rtslc) in place of the LGH's passes.
-inline constexpr const char* kLightTreeBuild = "light tree build";
-inline constexpr const char* kLightcutCuts = "lightcut cuts";
-inline constexpr const char* kLightcutSampling = "lightcut sampling";
-inline constexpr const char* kIrradianceFilter = "irradiance filter";
-}  // namespace passes
 
 // Images a frame can hand back (AOVs).
 //   indirect    radiance through the LGH, unshadowed (albedo / pi x irradiance); with the lightcuts, shadowed
@@ -99,7 +79,8 @@ class Renderer {
   Renderer(const SceneGpu& scene, const RenderSettings& settings);
 
   const RenderSettings& settings() const { return settings_; }
-  void setSettings(const RenderSettings& settings);  // reallocates targets when the size changes
+  // The targets follow at the next render(): what the new settings switch off is freed there.
+  void setSettings(const RenderSettings& settings);
 
   FrameStats render(const CameraView& view);
   // The next frame starts the accumulated history anew (render() does so itself when the lights or
@@ -111,6 +92,8 @@ class Renderer {
   void restartRandomSequence() { frameIndex_ = 0; }
   ImageRGBA readImage(Aov aov) const;
   const GBuffer& gbuffer() const { return gbuffer_; }
+  // An AOV this configuration does not render (the ratio unshadowed, the overdraw without counting) reads
+  // as its neutral value: visibility 1, light and counts 0.
   const gl::Texture2D& texture(Aov aov) const;
   float clampDistance() const;           // d_c in use (resolves the automatic default)
   LghBuildOptions buildOptions() const;  // how the hierarchy is built (levels, smallest top cell)
@@ -121,7 +104,19 @@ class Renderer {
   const GpuLightTree& lightTree() const { return lightTree_; }     // with --indirect-method rtslc
 
  private:
+  // What the settings switch on, which decides the targets the frame holds and what its passes keep.
+  struct Configuration {
+    int width = 0, height = 0, interleave = 1;
+    bool lgh = false, hierarchy = false, shadowed = false, lightcuts = false;
+    bool overdraw = false, accumulating = false;
+    bool operator==(const Configuration& o) const;
+    bool operator!=(const Configuration& o) const { return !(*this == o); }
+  };
+  Configuration configuration() const;
+  // Allocates the targets `configured_` uses and frees the rest, with what the passes and the light
+  // builds hold for a method or feature that is off: the frame holds only what it uses.
   void allocateTargets();
+  void releaseUnused();
   void uploadFrameUniforms(const CameraView& view);
   bool pointLightsThroughLgh() const;
   bool shadowed() const { return settings_.shadows.samples > 0; }
@@ -159,6 +154,7 @@ class Renderer {
 
   const SceneGpu& scene_;
   RenderSettings settings_;
+  Configuration configured_;  // what the targets were allocated for
   gl::Profiler profiler_;
   gl::Buffer frameUniforms_;
   unsigned frameIndex_ = 0;
@@ -207,6 +203,8 @@ class Renderer {
   gl::Texture2D filteredIrradiance_;  // the lightcuts' irradiance, filtered
   gl::Texture2D indirect_;            // albedo / pi x irradiance, unshadowed
   gl::Texture2D final_;
+  const gl::Texture2D& target(Aov aov) const;  // empty where not rendered
+  mutable gl::Texture2D neutralAov_;           // texture() of an AOV not rendered, made when asked for
 };
 
 }  // namespace lgh

@@ -111,6 +111,7 @@ struct RenderSettings {
   bool directShadows = true;           // DirectLightPass: one shadow ray per punctual light
   bool indirect = true;                // light through the LGH; false: emission and direct light only
   float clampDistance = 0.0f;          // d_c in metres; 0 = automatic (1e-2 of the scene diagonal)
+  float gpuMemoryLimit = 0;            // MB the engine's GL objects may hold; 0: the device's reported free memory
   InputLightSettings inputLights;
   HierarchySettings hierarchy;
   LightPassSettings lightPass;
@@ -179,6 +180,11 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(s.directShadows, SettingInfo{"direct-shadows", "trace shadow rays for direct light"});
   visit(s.clampDistance,
         SettingInfo{"clamp-distance", "d_c in 1/max(d^2, d_c^2), metres (0: 1e-2 x scene diagonal)", 0, 1e9});
+  visit(s.gpuMemoryLimit, SettingInfo{"gpu-memory-limit",
+                                      "MB the renderer's GPU objects may hold together (0: no limit but the free "
+                                      "memory the device reports, where it reports it)",
+                                      0, 1e9}
+                              .keepingHistory());
   visit(s.indirect, SettingInfo{"indirect", "indirect light through the LGH (false: direct light only)"});
   visit(s.indirectMethod,
         SettingInfo{"indirect-method", "lgh (the lighting grid hierarchy) or rtslc (stochastic lightcuts, the peer)"}

@@ -2,16 +2,24 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 namespace lgh::gl {
 
-Buffer::Buffer(size_t bytes, const void* data, GLbitfield flags) : bytes_(bytes) {
+namespace {
+// Zero-sized storage is invalid in GL; a 16-byte stub keeps bindings legal.
+size_t storageBytes(size_t bytes) { return bytes ? bytes : 16; }
+}  // namespace
+
+Buffer::Buffer(Label label, size_t bytes, const void* data, GLbitfield flags)
+    : label_(std::move(label)), allocation_(label_, storageBytes(bytes)), bytes_(bytes) {
   GLuint name = 0;
   glCreateBuffers(1, &name);
   handle_ = Handle<DeleteBuffer>(name);
-  // Zero-sized storage is invalid in GL; keep a 16-byte stub so bindings stay legal.
-  const size_t storage = bytes ? bytes : 16;
-  glNamedBufferStorage(name, GLsizeiptr(storage), data, flags);
+  glNamedBufferStorage(name, GLsizeiptr(storageBytes(bytes)), data, flags);
+  const std::string text = label_.text();
+  glObjectLabel(GL_BUFFER, name, GLsizei(text.size()), text.c_str());
   if (!data) clear();
 }
 
@@ -31,22 +39,49 @@ void Buffer::read(void* out, size_t bytes, size_t offset) const {
   if (bytes) glGetNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), out);
 }
 
-void Buffer::bindBase(GLenum target, GLuint index) const { glBindBufferBase(target, index, id()); }
+void Buffer::bindBase(GLenum target, GLuint index) const {
+  checkStorageBlock(target, bytes_);
+  glBindBufferBase(target, index, id());
+}
 
 void Buffer::bindRange(GLenum target, GLuint index, size_t offset, size_t bytes) const {
+  checkStorageBlock(target, bytes);
   glBindBufferRange(target, index, id(), GLintptr(offset), GLsizeiptr(bytes ? bytes : 16));
 }
 
-bool ensureSize(Buffer& buffer, size_t bytes, GLbitfield flags) {
+void Buffer::checkStorageBlock(GLenum target, size_t bytes) const {
+  if (target != GL_SHADER_STORAGE_BUFFER || bytes <= kMinStorageBlockBytes) return;
+  const size_t limit = maxStorageBlockBytes();
+  if (limit > 0 && bytes > limit)
+    throw OutOfMemory("GPU memory: " + label_.text() + " binds " + formatBytes(double(bytes)) +
+                      (label_.scaledBy.empty() ? "" : " (its size follows " + label_.scaledBy + ")") +
+                      " as one shader storage block, more than the " + formatBytes(double(limit)) +
+                      " this device allows (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)");
+}
+
+bool ensureSize(Buffer& buffer, const Label& label, size_t bytes, GLbitfield flags) {
   if (buffer && buffer.size() >= bytes) return false;
-  buffer = Buffer(bytes, nullptr, flags);
+  buffer = Buffer();  // the old storage goes before the new is counted against the budget
+  buffer = Buffer(label, bytes, nullptr, flags);
+  return true;
+}
+
+bool fitSize(Buffer& buffer, const Label& label, size_t bytes, GLbitfield flags) {
+  if (buffer && buffer.size() == bytes) return false;
+  buffer = Buffer();
+  buffer = Buffer(label, bytes, nullptr, flags);
   return true;
 }
 
 size_t maxStorageBlockBytes() {
-  GLint64 bytes = 0;
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);
-  return size_t(std::max<GLint64>(bytes, 0));
+  // Asked once: the engine's contexts are all of one driver, and bindings check it often.
+  static size_t cached = 0;
+  if (cached == 0) {
+    GLint64 bytes = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &bytes);
+    cached = size_t(std::max<GLint64>(bytes, 0));
+  }
+  return cached;
 }
 
 size_t storageBlockElements(size_t elementSize) {

@@ -1,10 +1,13 @@
 #pragma once
-// A GL buffer with immutable storage. Typed upload/download keep element counts in one place.
+// A GL buffer with immutable storage. Typed upload/download keep element counts in one place; the
+// label says who holds it, and its bytes are in gl::memory() while it lives.
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "render/gl/memory.h"
 #include "render/gl/resource.h"
 
 namespace lgh::gl {
@@ -13,14 +16,16 @@ class Buffer {
  public:
   Buffer() = default;
   // flags: GL_DYNAMIC_STORAGE_BIT to allow update(); storage is zero-initialised when data is null.
-  explicit Buffer(size_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+  // Throws gl::OutOfMemory when the bytes exceed the memory budget (gl/memory.h).
+  Buffer(Label label, size_t bytes, const void* data = nullptr, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
   template <typename T>
-  static Buffer fromVector(const std::vector<T>& v, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT) {
-    return Buffer(v.size() * sizeof(T), v.empty() ? nullptr : v.data(), flags);
+  static Buffer fromVector(Label label, const std::vector<T>& v, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT) {
+    return Buffer(std::move(label), v.size() * sizeof(T), v.empty() ? nullptr : v.data(), flags);
   }
 
   GLuint id() const { return handle_.id(); }
   size_t size() const { return bytes_; }
+  const Label& label() const { return label_; }
   explicit operator bool() const { return bool(handle_); }
 
   void update(const void* data, size_t bytes, size_t offset = 0);
@@ -43,17 +48,26 @@ class Buffer {
     return download<T>(bytes_ / sizeof(T));
   }
 
-  // target: GL_SHADER_STORAGE_BUFFER, GL_UNIFORM_BUFFER, GL_ATOMIC_COUNTER_BUFFER.
+  // target: GL_SHADER_STORAGE_BUFFER, GL_UNIFORM_BUFFER, GL_ATOMIC_COUNTER_BUFFER. A storage binding
+  // longer than one storage block may span (GL_MAX_SHADER_STORAGE_BLOCK_SIZE) throws gl::OutOfMemory
+  // naming the buffer: GL would bind it without complaint and the shader read past the block's end.
   void bindBase(GLenum target, GLuint index) const;
   void bindRange(GLenum target, GLuint index, size_t offset, size_t bytes) const;
 
  private:
+  void checkStorageBlock(GLenum target, size_t bytes) const;
+
+  Label label_;
+  Allocation allocation_;
   Handle<DeleteBuffer> handle_;
   size_t bytes_ = 0;
 };
 
 // Grows (reallocates, contents lost) a buffer to at least `bytes`; returns true if it was reallocated.
-bool ensureSize(Buffer& buffer, size_t bytes, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+bool ensureSize(Buffer& buffer, const Label& label, size_t bytes, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+// Reallocates (contents lost) a buffer unless it holds exactly `bytes`: for what a configuration sizes
+// (pixels, lights), so that a smaller configuration holds less again. Returns true if it was reallocated.
+bool fitSize(Buffer& buffer, const Label& label, size_t bytes, GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
 
 // GL_MAX_SHADER_STORAGE_BLOCK_SIZE: the most bytes one shader storage block may span (128 MiB on llvmpipe).
 size_t maxStorageBlockBytes();

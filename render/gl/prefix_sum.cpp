@@ -1,5 +1,8 @@
 #include "render/gl/prefix_sum.h"
 
+#include <string>
+#include <utility>
+
 #include "shared/bindings.h"
 
 namespace lgh::gl {
@@ -7,8 +10,9 @@ namespace {
 constexpr size_t kBlockSize = 1024;  // 256 threads x 4 items, as in glsl/prefix_sum.comp
 }
 
-PrefixSum::PrefixSum()
-    : scanBlocks_(Program::compute("prefix_sum.comp", {{"LGH_SCAN_BLOCKS", "1"}})),
+PrefixSum::PrefixSum(std::string owner)
+    : owner_(std::move(owner)),
+      scanBlocks_(Program::compute("prefix_sum.comp", {{"LGH_SCAN_BLOCKS", "1"}})),
       addBlocks_(Program::compute("prefix_sum.comp", {{"LGH_SCAN_ADD", "1"}})),
       // 1024^4 values is past any 32-bit count: four levels of block sums always suffice, and sizing
       // the vector once keeps references to its buffers valid through the recursion.
@@ -21,7 +25,7 @@ GLuint PrefixSum::scan(const Buffer& values, size_t count) {
 
 GLuint PrefixSum::scanLevel(const Buffer& values, size_t count, size_t depth) {
   const size_t blocks = (count + kBlockSize - 1) / kBlockSize;
-  ensureSize(blockSums_[depth], (blocks + 1) * sizeof(GLuint));
+  ensureSize(blockSums_[depth], {owner_, "prefix sum " + std::to_string(depth)}, (blocks + 1) * sizeof(GLuint));
   const Buffer& sums = blockSums_[depth];
 
   values.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);

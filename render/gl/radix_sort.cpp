@@ -12,9 +12,20 @@ constexpr size_t kBlockSize = 1024;  // 256 threads x 4 pairs, as in glsl/radix_
 constexpr size_t kDigits = 16;       // 4 bits per pass
 }  // namespace
 
-RadixSort::RadixSort()
-    : local_(Program::compute("radix_sort.comp", {{"LGH_RADIX_LOCAL", "1"}})),
-      scatter_(Program::compute("radix_sort.comp", {{"LGH_RADIX_SCATTER", "1"}})) {}
+RadixSort::RadixSort(const std::string& owner)
+    : owner_(owner),
+      local_(Program::compute("radix_sort.comp", {{"LGH_RADIX_LOCAL", "1"}})),
+      scatter_(Program::compute("radix_sort.comp", {{"LGH_RADIX_SCATTER", "1"}})),
+      prefixSum_(owner) {}
+
+void RadixSort::release() {
+  scratchKeys_ = {};
+  scratchValues_ = {};
+  otherKeys_ = {};
+  otherValues_ = {};
+  digitCounts_ = {};
+  prefixSum_.release();
+}
 
 void RadixSort::sort(const Buffer& keys, const Buffer& values, size_t count, int keyBits) {
   if (count < 2 || keyBits <= 0) return;
@@ -23,11 +34,12 @@ void RadixSort::sort(const Buffer& keys, const Buffer& values, size_t count, int
     throw std::invalid_argument("RadixSort: " + std::to_string(count) + " pairs exceed the buffers");
   const size_t blocks = (count + kBlockSize - 1) / kBlockSize;
   const size_t bytes = count * sizeof(GLuint);
-  ensureSize(scratchKeys_, blocks * kBlockSize * sizeof(GLuint));
-  ensureSize(scratchValues_, blocks * kBlockSize * sizeof(GLuint));
-  ensureSize(otherKeys_, bytes);
-  ensureSize(otherValues_, bytes);
-  ensureSize(digitCounts_, (kDigits * blocks + 1) * sizeof(GLuint));
+  const std::string scaled = "the sorted pairs";
+  ensureSize(scratchKeys_, {owner_, "sort: block keys", scaled}, blocks * kBlockSize * sizeof(GLuint));
+  ensureSize(scratchValues_, {owner_, "sort: block values", scaled}, blocks * kBlockSize * sizeof(GLuint));
+  ensureSize(otherKeys_, {owner_, "sort: keys", scaled}, bytes);
+  ensureSize(otherValues_, {owner_, "sort: values", scaled}, bytes);
+  ensureSize(digitCounts_, {owner_, "sort: digit counts", scaled}, (kDigits * blocks + 1) * sizeof(GLuint));
 
   // A dispatch reads pairs from one side and writes them to the other, and reads or writes the counts.
   auto bindPairs = [this](const Buffer& keysIn, const Buffer& valuesIn, const Buffer& keysOut,

@@ -5,6 +5,7 @@
 // result is std::stable_sort by key, the same on every run. Used by the light tree (Morton codes of S0).
 
 #include <cstddef>
+#include <string>
 
 #include "render/gl/buffer.h"
 #include "render/gl/prefix_sum.h"
@@ -14,12 +15,16 @@ namespace lgh::gl {
 
 class RadixSort {
  public:
-  RadixSort();
+  // owner: whose memory the scratch buffers are (gl/memory.h).
+  explicit RadixSort(const std::string& owner);
   // Sorts keys[0, count) ascending, moving values[0, count) with them; only the low keyBits bits of the
   // keys are compared (higher bits must be 0 or equal), ceil(keyBits / 4) passes.
   void sort(const Buffer& keys, const Buffer& values, size_t count, int keyBits = 32);
+  // Frees the scratch buffers (the next sort allocates them again).
+  void release();
 
  private:
+  std::string owner_;
   Program local_, scatter_;
   PrefixSum prefixSum_;
   Buffer scratchKeys_, scratchValues_;  // the blocks sorted locally

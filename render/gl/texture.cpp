@@ -1,19 +1,61 @@
 #include "render/gl/texture.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace lgh::gl {
 
-Texture2D::Texture2D(int width, int height, GLenum internalFormat, int mipLevels)
-    : width_(width), height_(height), format_(internalFormat) {
-  if (width <= 0 || height <= 0)
-    throw std::invalid_argument("Texture2D: size must be positive, got " + std::to_string(width) + "x" +
-                                std::to_string(height));
+namespace {
+size_t bytesPerTexel(GLenum format) {
+  switch (format) {
+    case GL_RGBA32F:
+      return 16;
+    case GL_RGBA16F:
+    case GL_RG32F:
+    case GL_DEPTH32F_STENCIL8:  // 32-bit depth beside 8 bits of stencil, padded to 64 bits
+      return 8;
+    case GL_R32F:
+    case GL_R32UI:
+    case GL_RGBA8:
+    case GL_SRGB8_ALPHA8:
+    case GL_DEPTH_COMPONENT32F:
+    case GL_DEPTH24_STENCIL8:
+      return 4;
+    default:
+      throw std::invalid_argument("Texture2D: no size known for internal format " + std::to_string(format) +
+                                  " (add it to gl/texture.cpp)");
+  }
+}
+
+int checkedSize(int size, int other) {
+  if (size <= 0 || other <= 0)
+    throw std::invalid_argument("Texture2D: size must be positive, got " + std::to_string(size) + "x" +
+                                std::to_string(other));
+  return size;
+}
+}  // namespace
+
+size_t textureBytes(GLenum internalFormat, int width, int height, int mipLevels) {
+  size_t texels = 0;
+  for (int level = 0; level < mipLevels; ++level)
+    texels += size_t(std::max(width >> level, 1)) * size_t(std::max(height >> level, 1));
+  return texels * bytesPerTexel(internalFormat);
+}
+
+Texture2D::Texture2D(Label label, int width, int height, GLenum internalFormat, int mipLevels)
+    : label_(std::move(label)),
+      allocation_(label_, textureBytes(internalFormat, checkedSize(width, height), height, mipLevels)),
+      width_(width),
+      height_(height),
+      format_(internalFormat) {
   GLuint name = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &name);
   handle_ = Handle<DeleteTexture>(name);
   glTextureStorage2D(name, mipLevels, internalFormat, width, height);
+  const std::string text = label_.text();
+  glObjectLabel(GL_TEXTURE, name, GLsizei(text.size()), text.c_str());
   setFilter(GL_NEAREST, GL_NEAREST);
   setWrap(GL_CLAMP_TO_EDGE);
 }

@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <vector>
 
+#include "render/gl/memory.h"
 #include "render/gl/resource.h"
 
 namespace lgh::gl {
@@ -12,12 +13,14 @@ namespace lgh::gl {
 class Texture2D {
  public:
   Texture2D() = default;
-  Texture2D(int width, int height, GLenum internalFormat, int mipLevels = 1);
+  // Throws gl::OutOfMemory when the bytes exceed the memory budget (gl/memory.h).
+  Texture2D(Label label, int width, int height, GLenum internalFormat, int mipLevels = 1);
 
   GLuint id() const { return handle_.id(); }
   int width() const { return width_; }
   int height() const { return height_; }
   GLenum format() const { return format_; }
+  const Label& label() const { return label_; }
   explicit operator bool() const { return bool(handle_); }
 
   void setFilter(GLenum minFilter, GLenum magFilter);
@@ -33,10 +36,15 @@ class Texture2D {
   void bindImage(GLuint unit, GLenum access) const;
 
  private:
+  Label label_;
+  Allocation allocation_;
   Handle<DeleteTexture> handle_;
   int width_ = 0, height_ = 0;
   GLenum format_ = 0;
 };
+
+// Bytes of storage a texture of this format, size and mip chain takes (as laid out unpadded).
+size_t textureBytes(GLenum internalFormat, int width, int height, int mipLevels = 1);
 
 class Framebuffer {
  public:

@@ -6,13 +6,22 @@
 #include <vector>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/accumulation_types.h"
 #include "shared/bindings.h"
 
 namespace lgh {
 
 AccumulationPass::AccumulationPass()
-    : program_(gl::Program::compute("accumulate.comp")), uniforms_(sizeof(gpu::AccumulationUniforms)) {}
+    : program_(gl::Program::compute("accumulate.comp")),
+      uniforms_(passes::kAccumulation, sizeof(gpu::AccumulationUniforms)) {}
+
+void AccumulationPass::release() {
+  history_[0] = {};
+  history_[1] = {};
+  hasHistory_ = false;
+  uniforms_.release();
+}
 
 void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationSettings& settings,
                                const AccumulationTargets& io) {
@@ -24,11 +33,13 @@ void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationS
   History& next = history_[1 - current_];
   for (History* h : {&previous, &next}) {
     if (h->irradianceSum.width() == gbuffer.width && h->irradianceSum.height() == gbuffer.height) continue;
-    h->irradianceSum = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
-    h->ratioSum = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
-    h->heaviest = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RG32F);
-    h->position = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
-    h->normal = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA16F);
+    const int w = gbuffer.width, h2 = gbuffer.height;
+    h->irradianceSum =
+        gl::Texture2D({passes::kAccumulation, "history: irradiance sums", kImageSize}, w, h2, GL_RGBA32F);
+    h->ratioSum = gl::Texture2D({passes::kAccumulation, "history: ratio sums", kImageSize}, w, h2, GL_RGBA32F);
+    h->heaviest = gl::Texture2D({passes::kAccumulation, "history: heaviest frame", kImageSize}, w, h2, GL_RG32F);
+    h->position = gl::Texture2D({passes::kAccumulation, "history: position", kImageSize}, w, h2, GL_RGBA32F);
+    h->normal = gl::Texture2D({passes::kAccumulation, "history: normal", kImageSize}, w, h2, GL_RGBA16F);
     hasHistory_ = false;
   }
   // Stage 0 (sums and outputs), and with interleaving stage 1 (pixels whose sums lack some tiles: resolved

@@ -49,6 +49,8 @@ class AccumulationPass {
   AccumulationPass();
   // The next execute() starts every pixel's history anew.
   void restart() { hasHistory_ = false; }
+  // Frees the history (accumulation off); the next execute() starts without one.
+  void release();
   void execute(const AccumulationInputs& in, const AccumulationSettings& settings, const AccumulationTargets& io);
 
  private:

@@ -1,15 +1,16 @@
 #include "render/passes/composite_pass.h"
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 
 namespace lgh {
 
 CompositePass::CompositePass()
     : program_(gl::Program::compute("composite.comp")),
-      black_(1, 1, GL_RGBA32F),
-      white_(1, 1, GL_RGBA32F),
-      counter_(sizeof(GLuint)) {
+      black_({passes::kComposite, "black"}, 1, 1, GL_RGBA32F),
+      white_({passes::kComposite, "white"}, 1, 1, GL_RGBA32F),
+      counter_({passes::kComposite, "non-finite counter"}, sizeof(GLuint)) {
   black_.clear(glm::vec4(0.0f));
   white_.clear(glm::vec4(1.0f));
 }

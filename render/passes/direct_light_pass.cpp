@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 
 namespace lgh {
@@ -23,7 +24,7 @@ void DirectLightPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, boo
         if (l.type != gpu::kLightPoint) lights.push_back(l);
       nonPointLightCount_ = lights.size();
       lights.resize(std::max<size_t>(lights.size(), 1));  // a buffer is never empty
-      nonPointLights_ = gl::Buffer::fromVector(lights, 0);
+      nonPointLights_ = gl::Buffer::fromVector({passes::kDirectLight, "non-point lights"}, lights, 0);
       nonPointLightsUploaded_ = true;
       nonPointLightsVersion_ = scene.lightsVersion();
     }

@@ -5,12 +5,14 @@
 #include <string>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/display_encode.h"
 
 namespace lgh {
 
-DisplayImage::DisplayImage(int w, int h) : width(w), height(h), color(w, h, GL_RGBA8), framebuffer({&color}, nullptr) {}
+DisplayImage::DisplayImage(int w, int h)
+    : width(w), height(h), color({"display", "colour", kImageSize}, w, h, GL_RGBA8), framebuffer({&color}, nullptr) {}
 
 std::vector<std::uint8_t> DisplayImage::readRGB() const {
   std::vector<std::uint8_t> rgb(size_t(width) * size_t(height) * 3);

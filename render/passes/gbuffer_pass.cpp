@@ -1,6 +1,7 @@
 #include "render/passes/gbuffer_pass.h"
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 
 namespace lgh {
@@ -8,11 +9,11 @@ namespace lgh {
 GBuffer::GBuffer(int w, int h)
     : width(w),
       height(h),
-      position(w, h, GL_RGBA32F),
-      normal(w, h, GL_RGBA16F),
-      albedo(w, h, GL_RGBA16F),
-      emission(w, h, GL_RGBA16F),
-      depth(w, h, GL_DEPTH_COMPONENT32F),
+      position({passes::kGBuffer, "position", kImageSize}, w, h, GL_RGBA32F),
+      normal({passes::kGBuffer, "normal", kImageSize}, w, h, GL_RGBA16F),
+      albedo({passes::kGBuffer, "albedo", kImageSize}, w, h, GL_RGBA16F),
+      emission({passes::kGBuffer, "emission", kImageSize}, w, h, GL_RGBA16F),
+      depth({passes::kGBuffer, "depth", kImageSize}, w, h, GL_DEPTH_COMPONENT32F),
       framebuffer({&position, &normal, &albedo, &emission}, &depth) {}
 
 void GBuffer::bindForReading() const {

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/lgh_types.h"
 
 namespace lgh {
@@ -22,7 +23,8 @@ void InputLightsPass::execute(const InputLightSettings& s, bool pointLightsToS0,
   const std::uint32_t seed = std::uint32_t(s.seed);
   const size_t vplCapacity = vplBudget > 0 ? VplPass::maxVplCount(vplBudget, s.bounces) : 0;
   const size_t capacity = points.size() + emitterSamples + vplCapacity;
-  gl::ensureSize(out.lights, std::max<size_t>(capacity, 1) * sizeof(gpu::GpuLight));
+  gl::fitSize(out.lights, {passes::kInputLights, "S0", "vpls and the scene's lights"},
+              std::max<size_t>(capacity, 1) * sizeof(gpu::GpuLight));
 
   if (!points.empty()) out.lights.update(points);
   out.pointLights = points.size();

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/light_pass_types.h"
 
@@ -20,12 +21,15 @@ TileLayout TileLayout::of(int tilesPerAxis, int width, int height) {
   return t;
 }
 
-Tiles::Tiles(const TileLayout& l)
+Tiles::Tiles(const TileLayout& l, bool countFragments)
     : layout(l),
-      position(l.targetSize().x, l.targetSize().y, GL_RGBA32F),
-      normal(l.targetSize().x, l.targetSize().y, GL_RGBA16F),
-      irradiance(l.targetSize().x, l.targetSize().y, GL_RGBA32F),
-      fragmentCounts(l.targetSize().x, l.targetSize().y, GL_R32UI) {}
+      position({passes::kInterleaveSplit, "tiles: position", kImageSize}, l.targetSize().x, l.targetSize().y,
+               GL_RGBA32F),
+      normal({passes::kInterleaveSplit, "tiles: normal", kImageSize}, l.targetSize().x, l.targetSize().y, GL_RGBA16F),
+      irradiance({passes::kLightPass, "tiles: irradiance", kImageSize}, l.targetSize().x, l.targetSize().y, GL_RGBA32F),
+      fragmentCounts(countFragments ? gl::Texture2D({passes::kLightPass, "tiles: fragment counts", kImageSize},
+                                                    l.targetSize().x, l.targetSize().y, GL_R32UI)
+                                    : gl::Texture2D()) {}
 
 InterleavePass::InterleavePass()
     : split_(gl::Program::compute("deinterleave.comp")), resolve_(gl::Program::compute("interleave_resolve.comp")) {}

@@ -22,7 +22,8 @@ struct TileLayout {
 // The de-interleaved surfaces and what the light pass writes for them.
 struct Tiles {
   Tiles() = default;
-  explicit Tiles(const TileLayout& layout);
+  // countFragments: with the fragment counter (the overdraw measurement), else without.
+  Tiles(const TileLayout& layout, bool countFragments);
   TileLayout layout;
   gl::Texture2D position;        // RGBA32F, w = 0 on background and padding
   gl::Texture2D normal;          // RGBA16F

@@ -5,13 +5,21 @@
 #include <vector>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/irradiance_filter_types.h"
 
 namespace lgh {
 
 IrradianceFilterPass::IrradianceFilterPass()
-    : program_(gl::Program::compute("irradiance_atrous.comp")), uniforms_(sizeof(gpu::IrradianceFilterUniforms)) {}
+    : program_(gl::Program::compute("irradiance_atrous.comp")),
+      uniforms_(passes::kIrradianceFilter, sizeof(gpu::IrradianceFilterUniforms)) {}
+
+void IrradianceFilterPass::release() {
+  ping_ = {};
+  pong_ = {};
+  uniforms_.release();
+}
 
 void IrradianceFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& irradiance,
                                    const IrradianceFilterOptions& options, gl::Texture2D& filtered) {
@@ -24,8 +32,8 @@ void IrradianceFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& 
     return;
   }
   if (ping_.width() != gbuffer.width || ping_.height() != gbuffer.height) {
-    ping_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
-    pong_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
+    ping_ = gl::Texture2D({passes::kIrradianceFilter, "ping", kImageSize}, gbuffer.width, gbuffer.height, GL_RGBA32F);
+    pong_ = gl::Texture2D({passes::kIrradianceFilter, "pong", kImageSize}, gbuffer.width, gbuffer.height, GL_RGBA32F);
   }
   std::vector<gpu::IrradianceFilterUniforms> passes(size_t(filter.passes));
   for (int i = 0; i < filter.passes; ++i) {

@@ -23,6 +23,8 @@ class IrradianceFilterPass {
  public:
   IrradianceFilterPass();
   // With 0 passes the output is a copy of the input.
+  // Frees the GPU memory the pass holds between frames (it allocates again when next executed).
+  void release();
   void execute(const GBuffer& gbuffer, const gl::Texture2D& irradiance, const IrradianceFilterOptions& options,
                gl::Texture2D& filtered);
 

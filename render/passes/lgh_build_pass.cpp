@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/octahedral.h"
 
@@ -17,6 +18,8 @@ namespace {
 
 constexpr unsigned kLocalSize = 256;
 constexpr double kFixedPointHeadroom = 4611686018427387904.0;  // 2^62: sums stay below 2^63
+// What the hierarchy's memory follows (gl::Label::scaledBy): occupied vertices, never the grid's extent.
+constexpr const char* kOccupied = "the occupied grid vertices (vpls, levels)";
 
 size_t nextPowerOfTwo(size_t v) {
   size_t p = 1;
@@ -48,10 +51,7 @@ LghBuildPass::LghBuildPass(bool floatAtomicsAvailable)
       compactWrite_(gl::Program::compute("lgh_compact.comp")),
       scatterFixed_(gl::Program::compute("lgh_scatter.comp")),
       finalizeFixed_(gl::Program::compute("lgh_finalize.comp")),
-      gather_(gl::Program::compute("lgh_gather.comp")),
-      gridParams_(sizeof(gpu::LghGridParams)),
-      counters_(4 * sizeof(GLuint)),
-      boundsResult_(sizeof(gpu::LghBoundsResult)) {
+      gather_(gl::Program::compute("lgh_gather.comp")) {
   if (floatAtomicsAvailable_) {
     scatterFloat_ = gl::Program::compute("lgh_scatter.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
     finalizeFloat_ = gl::Program::compute("lgh_finalize.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
@@ -126,7 +126,7 @@ void LghBuildPass::insertKeys(const gl::Buffer& sources, size_t sourceCount, boo
     if (capacity > maxCapacity)
       throw std::runtime_error("LGH build: level " + std::to_string(level) + " needs more occupied vertices than a " +
                                mib(maxBlockBytes_) + " storage block holds; use fewer levels");
-    ensureSize(table.keys, capacity * sizeof(GLuint));
+    ensureSize(table.keys, {passes::kLghBuild, "vertex hash tables", kOccupied}, capacity * sizeof(GLuint));
     table.keys.clearUint(gpu::kEmptyKey);
     table.capacity = capacity;
     counters_.clear();
@@ -156,14 +156,15 @@ void LghBuildPass::insertKeys(const gl::Buffer& sources, size_t sourceCount, boo
 }
 
 void LghBuildPass::compact(LevelTable& table) {
-  ensureSize(table.slotIndex, table.capacity * sizeof(GLuint));
+  ensureSize(table.slotIndex, {passes::kLghBuild, "slot indices", kOccupied}, table.capacity * sizeof(GLuint));
   table.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   table.slotIndex.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   compactFlags_.set("capacity", GLuint(table.capacity));
   compactFlags_.dispatch1D(table.capacity, kLocalSize);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   table.count = prefixSum_.scan(table.slotIndex, table.capacity);
-  ensureSize(table.compactKeys, std::max<size_t>(table.count, 1) * sizeof(GLuint));
+  ensureSize(table.compactKeys, {passes::kLghBuild, "compact keys", kOccupied},
+             std::max<size_t>(table.count, 1) * sizeof(GLuint));
   table.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   table.slotIndex.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   table.compactKeys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS7);
@@ -174,7 +175,8 @@ void LghBuildPass::compact(LevelTable& table) {
   if (bytes > maxBlockBytes_)
     throw std::runtime_error("LGH build: " + std::to_string(table.count) + " grid lights in one level exceed a " +
                              mib(maxBlockBytes_) + " storage block; use fewer levels");
-  ensureSize(table.gridLights, std::max<size_t>(bytes, sizeof(gpu::GpuGridLight)));
+  ensureSize(table.gridLights, {passes::kLghBuild, "grid lights of a level", kOccupied},
+             std::max<size_t>(bytes, sizeof(gpu::GpuGridLight)));
 }
 
 void LghBuildPass::scatterLevel(const gl::Buffer& lights, size_t lightCount, const GridGeometry& grid, int level,
@@ -188,7 +190,7 @@ void LghBuildPass::scatterLevel(const gl::Buffer& lights, size_t lightCount, con
     if (bytes > maxBlockBytes_)
       throw std::runtime_error("LGH build: the sums of " + std::to_string(table.count) +
                                " vertices exceed a storage block; use fewer levels");
-    ensureSize(*buffer, bytes);
+    ensureSize(*buffer, {passes::kLghBuild, "vertex sums", kOccupied}, bytes);
     buffer->clear();
   }
   // Every sum is bounded by (lights) x (largest light value), since trilinear weights sum to 1 and
@@ -277,6 +279,9 @@ void LghBuildPass::execute(const gl::Buffer& lights, size_t lightCount, const Lg
 
   out = GpuHierarchy{};
   if (lightCount == 0) return;
+  gl::ensureSize(gridParams_, {passes::kLghBuild, "grid parameters"}, sizeof(gpu::LghGridParams));
+  gl::ensureSize(counters_, {passes::kLghBuild, "counters"}, 4 * sizeof(GLuint));
+  gl::ensureSize(boundsResult_, {passes::kLghBuild, "bounds"}, sizeof(gpu::LghBoundsResult));
   Bounds bounds;
   {
     auto s = scope("bounds");
@@ -315,7 +320,8 @@ void LghBuildPass::execute(const gl::Buffer& lights, size_t lightCount, const Lg
       total += tables[size_t(level)].count;
     }
     out.gridLightCount = total;
-    out.gridLights = gl::Buffer(std::max<size_t>(total, 1) * sizeof(gpu::GpuGridLight));
+    out.gridLights = gl::Buffer({passes::kLghBuild, "grid lights", kOccupied},
+                                std::max<size_t>(total, 1) * sizeof(gpu::GpuGridLight));
     for (int level = 1; level <= levels; ++level) {
       const LevelTable& t = tables[size_t(level)];
       if (t.count == 0) continue;
@@ -329,6 +335,10 @@ void LghBuildPass::execute(const gl::Buffer& lights, size_t lightCount, const Lg
     LevelTable& t = tables[size_t(level)];
     out.lookups[size_t(level)] = {std::move(t.keys), std::move(t.slotIndex), t.capacity};
   }
+  // The vertex sums and the rest of the scratch are the build's alone: the frame holds the hierarchy.
+  for (gl::Buffer* scratch : {&gridParams_, &counters_, &boundsResult_, &accPosition_, &accIntensity_, &accNormal_})
+    *scratch = {};
+  prefixSum_.release();
   gl::checkErrors("LGH build");
 }
 

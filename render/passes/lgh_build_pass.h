@@ -23,6 +23,7 @@
 #include "render/gl/prefix_sum.h"
 #include "render/gl/profiler.h"
 #include "render/gl/program.h"
+#include "render/passes/pass_names.h"
 #include "shared/lgh_types.h"
 
 namespace lgh {
@@ -115,7 +116,7 @@ class LghBuildPass {
   gl::Program bounds_, insertFromLights_, insertFromGridLights_, compactFlags_, compactWrite_, scatterFixed_,
       finalizeFixed_, gather_;
   gl::Program scatterFloat_, finalizeFloat_;  // only with GL_NV_shader_atomic_float
-  gl::PrefixSum prefixSum_;
+  gl::PrefixSum prefixSum_{passes::kLghBuild};
   gl::Buffer gridParams_, counters_, boundsResult_;
   gl::Buffer accPosition_, accIntensity_, accNormal_;
 };

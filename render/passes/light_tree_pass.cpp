@@ -5,6 +5,7 @@
 #include <string>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/lgh_types.h"
 
@@ -46,10 +47,11 @@ void LightTreePass::execute(const gl::Buffer& lights, size_t lightCount, GpuLigh
   out.leafCount = levels ? 1u << (levels - 1) : 0u;
   if (lightCount == 0) return;
   const size_t nodeBytes = 2 * size_t(out.leafCount) * sizeof(gpu::GpuLightTreeNode);
-  if (out.nodes.size() != nodeBytes) out.nodes = gl::Buffer(nodeBytes);
-  if (!out.bounds) out.bounds = gl::Buffer(sizeof(gpu::LghBoundsResult));
-  gl::ensureSize(keys_, lightCount * sizeof(GLuint));
-  gl::ensureSize(values_, lightCount * sizeof(GLuint));
+  if (out.nodes.size() != nodeBytes)
+    out.nodes = gl::Buffer({passes::kLightTreeBuild, "nodes", "the input lights"}, nodeBytes);
+  if (!out.bounds) out.bounds = gl::Buffer({passes::kLightTreeBuild, "bounds"}, sizeof(gpu::LghBoundsResult));
+  gl::ensureSize(keys_, {passes::kLightTreeBuild, "Morton codes", "the input lights"}, lightCount * sizeof(GLuint));
+  gl::ensureSize(values_, {passes::kLightTreeBuild, "light indices", "the input lights"}, lightCount * sizeof(GLuint));
 
   lights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   keys_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
@@ -99,6 +101,10 @@ void LightTreePass::execute(const gl::Buffer& lights, size_t lightCount, GpuLigh
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
   }
+  // The codes and the sort's scratch are the build's alone: the frame holds the tree.
+  keys_ = {};
+  values_ = {};
+  sort_.release();
   gl::checkErrors("light tree build");
 }
 

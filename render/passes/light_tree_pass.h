@@ -15,6 +15,7 @@
 #include "render/gl/profiler.h"
 #include "render/gl/program.h"
 #include "render/gl/radix_sort.h"
+#include "render/passes/pass_names.h"
 #include "shared/light_tree_types.h"
 
 namespace lgh {
@@ -39,7 +40,7 @@ class LightTreePass {
 
  private:
   gl::Program bounds_, build_;
-  gl::RadixSort sort_;
+  gl::RadixSort sort_{passes::kLightTreeBuild};
   gl::Buffer keys_, values_;  // Morton codes and S0 indices, sorted together
 };
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/light_pass_types.h"
 
@@ -39,9 +40,14 @@ void ShadowSlots::allocate(glm::ivec2 targetSize, int samples) {
     throw std::invalid_argument("shadow samples: " + std::to_string(samples) + " (use 0 to " +
                                 std::to_string(gpu::kMaxShadowSamples) + ")");
   const size_t pixels = size_t(targetSize.x) * size_t(targetSize.y);
-  gl::ensureSize(totals, std::max<size_t>(pixels, 1) * sizeof(float));
-  gl::ensureSize(unselectable, std::max<size_t>(pixels, 1) * sizeof(float));
-  gl::ensureSize(slots, std::max<size_t>(pixels * size_t(std::max(samples, 1)), 1) * sizeof(GLuint));
+  // The shadow rays' inputs: their memory is the rays' (a fixed footprint per pixel and sample).
+  const char* scaled = "width x height (x shadow-samples)";
+  gl::fitSize(totals, {passes::kShadowRays, "slots: importance totals", scaled},
+              std::max<size_t>(pixels, 1) * sizeof(float));
+  gl::fitSize(unselectable, {passes::kShadowRays, "slots: unselectable", scaled},
+              std::max<size_t>(pixels, 1) * sizeof(float));
+  gl::fitSize(slots, {passes::kShadowRays, "slots: selected lights", scaled},
+              std::max<size_t>(pixels * size_t(std::max(samples, 1)), 1) * sizeof(GLuint));
   k = samples;
   size = targetSize;
 }
@@ -52,7 +58,7 @@ unsigned selectionFlags(const ShadowEstimator& shadows) {
 }
 
 LightVolumePass::LightVolumePass(bool floatAtomics)
-    : floatAtomics_(floatAtomics), uniforms_(sizeof(gpu::LightPassUniforms)) {
+    : floatAtomics_(floatAtomics), uniforms_(passes::kLightPass, sizeof(gpu::LightPassUniforms)) {
   maxBlockLights_ = gl::storageBlockElements(sizeof(gpu::GpuLight));  // chunks of S0 start aligned
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
@@ -103,6 +109,12 @@ unsigned LightVolumePass::unselectableTargets(const LightPassOptions& options, s
                                 std::to_string(lightCount) + " input lights in one storage block (at most " +
                                 std::to_string(maxBlockLights_) + ")");
   return counts ? drawnTargets->races : 0u;
+}
+
+void LightVolumePass::release() {
+  culling_.release();
+  uniforms_.release();
+  framebuffer_ = {};
 }
 
 LightPassDraws LightVolumePass::execute(const LightPassInputs& in, const LightPassOptions& options,

@@ -93,6 +93,8 @@ class LightVolumePass {
   // needs every input light in one block).
   size_t inputLightsPerBlock() const { return maxBlockLights_; }
 
+  // Frees the GPU memory the pass holds between frames (it allocates again when next executed).
+  void release();
   LightPassDraws execute(const LightPassInputs& in, const LightPassOptions& options, const LightPassTarget& target);
 
  private:

@@ -5,11 +5,13 @@
 #include <vector>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 
 namespace lgh {
 
-RtslcPass::RtslcPass() : program_(gl::Program::compute("rtslc.comp")), uniforms_(sizeof(gpu::RtslcUniforms)) {}
+RtslcPass::RtslcPass()
+    : program_(gl::Program::compute("rtslc.comp")), uniforms_(passes::kLightcutSampling, sizeof(gpu::RtslcUniforms)) {}
 
 void RtslcPass::bind(const RtslcInputs& in, const RtslcOptions& options, size_t dispatch) {
   const RtslcSettings& s = options.settings;
@@ -32,7 +34,8 @@ void RtslcPass::bind(const RtslcInputs& in, const RtslcOptions& options, size_t 
                                 std::to_string(s.interleave) + "x" + std::to_string(s.interleave) + " interleaving");
   const unsigned blocksPerRow = unsigned((in.gbuffer.width + s.blockSize - 1) / s.blockSize);
   const unsigned blockRows = unsigned((in.gbuffer.height + s.blockSize - 1) / s.blockSize);
-  gl::ensureSize(cuts_, size_t(blocksPerRow) * blockRows * gpu::kMaxCutNodes * sizeof(GLuint));
+  gl::fitSize(cuts_, {passes::kLightcutCuts, "cuts", "width x height / rtslc-block^2"},
+              size_t(blocksPerRow) * blockRows * gpu::kMaxCutNodes * sizeof(GLuint));
   gpu::RtslcUniforms u{};
   u.stage = dispatch == 0 ? gpu::kRtslcCuts : gpu::kRtslcSampling;
   u.leafCount = in.tree.leafCount;
@@ -51,6 +54,11 @@ void RtslcPass::bind(const RtslcInputs& in, const RtslcOptions& options, size_t 
   in.tree.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   in.tree.bounds.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   cuts_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+}
+
+void RtslcPass::release() {
+  cuts_ = {};
+  uniforms_.release();
 }
 
 void RtslcPass::selectCuts(const RtslcInputs& in, const RtslcOptions& options) {

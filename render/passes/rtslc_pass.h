@@ -39,6 +39,8 @@ class RtslcPass {
   RtslcPass();
   // Both throw std::invalid_argument for settings out of range (samples, block size, interleave; samples x
   // interleave^2 cut nodes at most gpu::kMaxCutNodes, the block a multiple of the interleave).
+  // Frees the GPU memory the pass holds between frames (it allocates again when next executed).
+  void release();
   void selectCuts(const RtslcInputs& in, const RtslcOptions& options);
   void sample(const RtslcInputs& in, const RtslcOptions& options, const RtslcTargets& out);
   // The last cuts: gpu::kMaxCutNodes node indices per block, row by row from the bottom (kNoCutNode: unused).

@@ -5,20 +5,28 @@
 #include <vector>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/shadow_filter_types.h"
 
 namespace lgh {
 
 ShadowFilterPass::ShadowFilterPass()
-    : program_(gl::Program::compute("atrous.comp")), uniforms_(sizeof(gpu::ShadowFilterUniforms)) {}
+    : program_(gl::Program::compute("atrous.comp")),
+      uniforms_(passes::kShadowFilter, sizeof(gpu::ShadowFilterUniforms)) {}
+
+void ShadowFilterPass::release() {
+  ping_ = {};
+  pong_ = {};
+  uniforms_.release();
+}
 
 void ShadowFilterPass::execute(const ShadowFilterInputs& in, const ShadowFilterOptions& options,
                                gl::Texture2D& visibility) {
   const GBuffer& gbuffer = in.gbuffer;
   if (ping_.width() != gbuffer.width || ping_.height() != gbuffer.height) {
-    ping_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
-    pong_ = gl::Texture2D(gbuffer.width, gbuffer.height, GL_RGBA32F);
+    ping_ = gl::Texture2D({passes::kShadowFilter, "ping", kImageSize}, gbuffer.width, gbuffer.height, GL_RGBA32F);
+    pong_ = gl::Texture2D({passes::kShadowFilter, "pong", kImageSize}, gbuffer.width, gbuffer.height, GL_RGBA32F);
   }
   // The dispatches: prepare, resolve (interleaving), one pass per step 1, 2, ..., 2^(passes - 1), finish.
   const ShadowFilterSettings& filter = options.filter;

@@ -45,6 +45,8 @@ struct ShadowFilterOptions {
 class ShadowFilterPass {
  public:
   ShadowFilterPass();
+  // Frees the GPU memory the pass holds between frames (it allocates again when next executed).
+  void release();
   void execute(const ShadowFilterInputs& in, const ShadowFilterOptions& options, gl::Texture2D& visibility);
 
  private:

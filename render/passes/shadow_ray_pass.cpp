@@ -4,13 +4,17 @@
 #include <vector>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/shadow_ray_types.h"
 
 namespace lgh {
 
 ShadowRayPass::ShadowRayPass()
-    : program_(gl::Program::compute("shadow_rays.comp")), uniforms_(sizeof(gpu::ShadowRayUniforms)) {}
+    : program_(gl::Program::compute("shadow_rays.comp")),
+      uniforms_(passes::kShadowRays, sizeof(gpu::ShadowRayUniforms)) {}
+
+void ShadowRayPass::release() { uniforms_.release(); }
 
 void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& options, const ShadowRayTargets& out) {
   const bool drawnTargets = in.targets.races > 0 && in.targets.targets;

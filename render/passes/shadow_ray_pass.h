@@ -53,6 +53,8 @@ struct ShadowRayTargets {
 class ShadowRayPass {
  public:
   ShadowRayPass();
+  // Frees the GPU memory the pass holds between frames (it allocates again when next executed).
+  void release();
   void execute(const ShadowRayInputs& in, const ShadowRayOptions& options, const ShadowRayTargets& out);
 
  private:

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/light_pass_types.h"
 
@@ -16,17 +17,22 @@ ShadowTargetsPass::ShadowTargetsPass()
       resolveFromLights_(gl::Program::compute("shadow_targets.comp")),
       raceFromGridLights_(gl::Program::compute(
           "shadow_targets.comp", {{"SHADOW_TARGETS_RACE", "1"}, {"SHADOW_TARGETS_FROM_GRID_LIGHTS", "1"}})),
-      resolveFromGridLights_(gl::Program::compute("shadow_targets.comp", {{"SHADOW_TARGETS_FROM_GRID_LIGHTS", "1"}})),
-      gridParams_(sizeof(gpu::LghGridParams)) {
+      resolveFromGridLights_(gl::Program::compute("shadow_targets.comp", {{"SHADOW_TARGETS_FROM_GRID_LIGHTS", "1"}})) {
   maxBlockBytes_ = std::max(gl::maxStorageBlockBytes(), gl::kMinStorageBlockBytes);
+}
+
+void ShadowTargetsPass::release() {
+  raceTimes_ = {};
+  gridParams_ = {};
 }
 
 void ShadowTargetsPass::execute(const ShadowTargetsInputs& in, unsigned races, unsigned frameSeed, ShadowTargets& out) {
   const GpuHierarchy& hierarchy = in.hierarchy;
   out.races = races;
   const size_t entries = std::max<size_t>(hierarchy.gridLightCount * races, 1);
-  ensureSize(out.targets, entries * sizeof(GLuint));
-  ensureSize(raceTimes_, entries * sizeof(GLuint));
+  const char* scaled = "the grid lights x shadow-targets";
+  fitSize(out.targets, {passes::kShadowTargets, "targets", scaled}, entries * sizeof(GLuint));
+  fitSize(raceTimes_, {passes::kShadowTargets, "race times", scaled}, entries * sizeof(GLuint));
   out.targets.clearUint(gpu::kNoLight);
   raceTimes_.clearUint(0xffffffffu);  // above every finite time's bits
   raceTimes_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
@@ -47,6 +53,7 @@ void ShadowTargetsPass::runLevel(const gl::Program& fromLights, const gl::Progra
   const GpuHierarchy& hierarchy = in.hierarchy;
   const LghLevelLookup& lookup = hierarchy.lookups[size_t(level)];
   const gpu::LghGridParams params = gridParamsFor(hierarchy.grid, level, lookup.capacity);
+  gl::ensureSize(gridParams_, {passes::kShadowTargets, "grid parameters"}, sizeof params);
   gridParams_.update(&params, sizeof params);
   gridParams_.bindBase(GL_UNIFORM_BUFFER, LGH_UBO_PASS);
   lookup.keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);

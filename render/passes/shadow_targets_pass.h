@@ -29,6 +29,8 @@ struct ShadowTargetsInputs {
 class ShadowTargetsPass {
  public:
   ShadowTargetsPass();
+  // Frees the GPU memory the pass holds between frames (it allocates again when next executed).
+  void release();
   void execute(const ShadowTargetsInputs& in, unsigned races, unsigned frameSeed, ShadowTargets& out);
 
  private:

@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/light_levels.h"
 
@@ -41,16 +42,21 @@ VolumeCulling::VolumeCulling()
   glVertexArrayAttribBinding(sortedVertexArray_.id(), 0, 0);
   glVertexArrayBindingDivisor(sortedVertexArray_.id(), 0, 1);
   glEnableVertexArrayAttrib(sortedVertexArray_.id(), 0);
-  // One bucket per slice and one more for the spheres that reach the eye plane (light_slices.comp).
-  gl::ensureSize(sliceCounts_, (kCullingSlices + 1) * sizeof(GLuint));
-  gl::ensureSize(commands_, (kCullingSlices + 1) * 4 * sizeof(GLuint));
+}
+
+void VolumeCulling::release() {
+  depthStencil_ = {};
+  pyramid_ = {};
+  for (gl::Buffer* b : {&sliceCounts_, &sliceAndRank_, &commands_, &sortedLights_}) *b = {};
 }
 
 const gl::Texture2D& VolumeCulling::depthStencil(glm::ivec2 size) {
   if (depthStencil_.width() != size.x || depthStencil_.height() != size.y) {
-    depthStencil_ = gl::Texture2D(size.x, size.y, GL_DEPTH32F_STENCIL8);
+    depthStencil_ = gl::Texture2D({passes::kLightPass, "culling: depth and stencil", "width x height"}, size.x, size.y,
+                                  GL_DEPTH32F_STENCIL8);
     const int levels = 1 + int(std::floor(std::log2(double(std::max(size.x, size.y)))));
-    pyramid_ = gl::Texture2D(size.x, size.y, GL_R32F, levels);
+    pyramid_ = gl::Texture2D({passes::kLightPass, "culling: depth pyramid", "width x height"}, size.x, size.y, GL_R32F,
+                             levels);
     pyramid_.setFilter(GL_NEAREST_MIPMAP_NEAREST, GL_NEAREST);  // mipmapped: texelFetch may read every level
   }
   return depthStencil_;
@@ -131,8 +137,13 @@ void VolumeCulling::buildPyramid(const gl::Texture2D& position, float sceneSize)
 // commands, scatter.
 void VolumeCulling::sortBySlice(const SortInputs& in) {
   if (!sortProgram_) sortProgram_ = gl::Program::compute("light_slices.comp");
-  gl::ensureSize(sliceAndRank_, std::max<size_t>(in.count, 1) * sizeof(GLuint));
-  gl::ensureSize(sortedLights_, std::max<size_t>(in.count, 1) * sizeof(GLuint));
+  gl::fitSize(sliceAndRank_, {passes::kLightPass, "culling: slice and rank", "the grid lights"},
+              std::max<size_t>(in.count, 1) * sizeof(GLuint));
+  gl::fitSize(sortedLights_, {passes::kLightPass, "culling: sorted lights", "the grid lights"},
+              std::max<size_t>(in.count, 1) * sizeof(GLuint));
+  // One bucket per slice and one more for the spheres that reach the eye plane (light_slices.comp).
+  gl::ensureSize(sliceCounts_, {passes::kLightPass, "culling: slice counts"}, (kCullingSlices + 1) * sizeof(GLuint));
+  gl::ensureSize(commands_, {passes::kLightPass, "culling: draw commands"}, (kCullingSlices + 1) * 4 * sizeof(GLuint));
   glVertexArrayVertexBuffer(sortedVertexArray_.id(), 0, sortedLights_.id(), 0, sizeof(GLuint));
   sliceCounts_.clear();
   in.gridLights->bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);

@@ -49,6 +49,8 @@ class VolumeCulling {
   // from the vertex attribute 0 (LGH_SORTED_LIGHTS in light_volume.vert). Needs the depth test and
   // GL_ZERO_TO_ONE set up by the caller; sets and restores the stencil test, leaves face culling off.
   void drawSorted() const;
+  // Frees the textures and buffers (made again when next needed).
+  void release();
 
  private:
   void writeDepthAndSlices(const gl::Texture2D& position, float sceneSize);

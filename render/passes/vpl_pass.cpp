@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/lgh_types.h"
 
@@ -13,8 +14,9 @@ VplPass::VplPass(const SceneGpu& scene)
     : scene_(scene),
       allEmitters_(buildEmitterTable(scene.scene(), scene.lights())),
       triangleEmitters_(buildEmissiveTriangleTable(scene.scene())),
-      allEmitterBuffer_(gl::Buffer::fromVector(allEmitters_.emitters, 0)),
-      triangleEmitterBuffer_(gl::Buffer::fromVector(triangleEmitters_.emitters, 0)),
+      allEmitterBuffer_(gl::Buffer::fromVector({passes::kInputLights, "emitters"}, allEmitters_.emitters, 0)),
+      triangleEmitterBuffer_(
+          gl::Buffer::fromVector({passes::kInputLights, "emissive triangles"}, triangleEmitters_.emitters, 0)),
       emittersLightsVersion_(scene.lightsVersion()),
       paths_(gl::Program::compute("vpl_generate.comp", {{"LGH_VPL_PATHS", "1"}})),
       emitterSamples_(gl::Program::compute("vpl_generate.comp", {{"LGH_EMITTER_SAMPLES", "1"}})),
@@ -40,7 +42,7 @@ void VplPass::generate(const gl::Program& program, const gl::Buffer& emitters, g
 }
 
 size_t VplPass::compact(size_t slotCount, gl::Buffer& out, size_t offset) {
-  gl::ensureSize(slotIndex_, slotCount * sizeof(GLuint));
+  gl::ensureSize(slotIndex_, {passes::kInputLights, "VPL slot index", "vpls"}, slotCount * sizeof(GLuint));
   pathSlots_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   out.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   slotIndex_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
@@ -56,6 +58,9 @@ size_t VplPass::compact(size_t slotCount, gl::Buffer& out, size_t offset) {
   compactWrite_.dispatch1D(slotCount, 256);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
   gl::checkErrors("VPL compaction");
+  // The paths' slots are generation scratch: the frame holds S0, not them.
+  pathSlots_ = {};
+  slotIndex_ = {};
   return written;
 }
 
@@ -65,7 +70,7 @@ void VplPass::updateEmitters() {
   // probability, so the whole table is rebuilt (on a light edit, not per frame; cheap next to tracing
   // the paths it feeds).
   allEmitters_ = buildEmitterTable(scene_.scene(), scene_.lights());
-  allEmitterBuffer_ = gl::Buffer::fromVector(allEmitters_.emitters, 0);
+  allEmitterBuffer_ = gl::Buffer::fromVector({passes::kInputLights, "emitters"}, allEmitters_.emitters, 0);
   emittersLightsVersion_ = scene_.lightsVersion();
 }
 
@@ -75,7 +80,7 @@ size_t VplPass::tracePaths(gl::Buffer& out, size_t offset, size_t budget, int bo
   if (bounces < 1 || allEmitters_.empty() || paths == 0) return 0;
   if (offset + slots > out.size() / sizeof(gpu::GpuLight))
     throw std::out_of_range("VplPass: the output buffer is too small");
-  gl::ensureSize(pathSlots_, slots * sizeof(gpu::GpuLight));
+  gl::ensureSize(pathSlots_, {passes::kInputLights, "VPL path slots", "vpls"}, slots * sizeof(gpu::GpuLight));
   pathSlots_.clear();  // flags 0: a slot no path wrote
   generate(paths_, allEmitterBuffer_, pathSlots_, 0, paths, bounces, seed);
   return compact(slots, out, offset);

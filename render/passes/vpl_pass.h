@@ -12,6 +12,7 @@
 #include "render/gl/buffer.h"
 #include "render/gl/prefix_sum.h"
 #include "render/gl/program.h"
+#include "render/passes/pass_names.h"
 #include "render/scene/emitters.h"
 #include "render/scene/scene_gpu.h"
 
@@ -48,7 +49,7 @@ class VplPass {
   gl::Buffer pathSlots_, slotIndex_;  // the paths' fixed slots (GpuLight, flags 0: empty) and their compaction
   unsigned emittersLightsVersion_;    // SceneGpu::lightsVersion() that allEmitters_ was built from
   gl::Program paths_, emitterSamples_, compactFlags_, compactWrite_;
-  gl::PrefixSum prefixSum_;
+  gl::PrefixSum prefixSum_{passes::kInputLights};
 };
 
 }  // namespace lgh

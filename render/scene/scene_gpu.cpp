@@ -6,6 +6,7 @@
 #include <string>
 
 #include "render/gl/debug.h"
+#include "render/passes/pass_names.h"
 #include "shared/bindings.h"
 
 namespace lgh {
@@ -46,7 +47,7 @@ gpu::GpuMaterial toGpu(const Material& m) {
 gl::Texture2D uploadTexture(const Texture& texture) {
   const int levels = 1 + int(std::floor(std::log2(float(std::max(texture.width, texture.height)))));
   // Colour textures are sRGB-encoded in glTF; the sampler decodes them to linear.
-  gl::Texture2D t(texture.width, texture.height, GL_SRGB8_ALPHA8, levels);
+  gl::Texture2D t({passes::kScene, "texture " + texture.name}, texture.width, texture.height, GL_SRGB8_ALPHA8, levels);
   t.upload(GL_RGBA, GL_UNSIGNED_BYTE, texture.rgba.data());
   glGenerateTextureMipmap(t.id());
   t.setFilter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
@@ -87,12 +88,12 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
     if (scene.materials[scene.triangleMaterials[t.sceneTriangle]].alphaMode == AlphaMode::Mask)
       t.flags |= gpu::kBvhTriangleAlphaMasked;
 
-  positions_ = gl::Buffer::fromVector(scene.positions, 0);
-  normals_ = gl::Buffer::fromVector(scene.normals, 0);
-  texcoords_ = gl::Buffer::fromVector(scene.texcoords, 0);
-  texcoords1_ = gl::Buffer::fromVector(scene.texcoords1, 0);
-  colors_ = gl::Buffer::fromVector(scene.colors, 0);
-  indices_ = gl::Buffer::fromVector(scene.indices, 0);
+  positions_ = gl::Buffer::fromVector({passes::kScene, "vertex positions"}, scene.positions, 0);
+  normals_ = gl::Buffer::fromVector({passes::kScene, "vertex normals"}, scene.normals, 0);
+  texcoords_ = gl::Buffer::fromVector({passes::kScene, "texture coordinates 0"}, scene.texcoords, 0);
+  texcoords1_ = gl::Buffer::fromVector({passes::kScene, "texture coordinates 1"}, scene.texcoords1, 0);
+  colors_ = gl::Buffer::fromVector({passes::kScene, "vertex colours"}, scene.colors, 0);
+  indices_ = gl::Buffer::fromVector({passes::kScene, "indices"}, scene.indices, 0);
   GLuint vao = 0;
   glCreateVertexArrays(1, &vao);
   vertexArray_ = gl::VertexArrayHandle(vao);
@@ -113,29 +114,30 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   for (const Material& m : scene.materials) materials_.push_back(toGpu(m));
   sceneLights_ = scene.lights;
   for (const PunctualLight& l : scene.lights) lights_.push_back(toGpu(l));
-  bvhNodes_ = gl::Buffer::fromVector(bvh_.nodes, 0);
-  bvhTriangles_ = gl::Buffer::fromVector(bvh_.triangles, 0);
-  materialBuffer_ = gl::Buffer::fromVector(materials_, 0);
-  lightBuffer_ = gl::Buffer::fromVector(lights_, GL_DYNAMIC_STORAGE_BIT);  // setPunctualLight updates it
+  bvhNodes_ = gl::Buffer::fromVector({passes::kScene, "BVH nodes"}, bvh_.nodes, 0);
+  bvhTriangles_ = gl::Buffer::fromVector({passes::kScene, "BVH triangles"}, bvh_.triangles, 0);
+  materialBuffer_ = gl::Buffer::fromVector({passes::kScene, "materials"}, materials_, 0);
+  lightBuffer_ = gl::Buffer::fromVector({passes::kScene, "punctual lights"}, lights_,
+                                        GL_DYNAMIC_STORAGE_BIT);  // setPunctualLight updates it
 
   std::vector<gpu::GpuSceneTriangle> triangles(scene.triangleCount());
   for (size_t t = 0; t < triangles.size(); ++t) {
     const std::uint32_t* i = &scene.indices[3 * t];
     triangles[t] = {scene.triangleMaterials[t], i[0], i[1], i[2]};
   }
-  sceneTriangles_ = gl::Buffer::fromVector(triangles, 0);
+  sceneTriangles_ = gl::Buffer::fromVector({passes::kScene, "triangles"}, triangles, 0);
   std::vector<gpu::GpuSceneVertex> vertices(scene.positions.size());
   for (size_t v = 0; v < vertices.size(); ++v)
     vertices[v] = {glm::vec4(scene.texcoords[v], scene.texcoords1[v]), scene.colors[v]};
-  sceneVertices_ = gl::Buffer::fromVector(vertices, 0);
+  sceneVertices_ = gl::Buffer::fromVector({passes::kScene, "vertex attributes"}, vertices, 0);
   std::vector<gpu::GpuTextureInfo> infos;
   std::vector<std::uint32_t> texels;
   packTexels(scene, infos, texels);
-  textureInfos_ = gl::Buffer::fromVector(infos, 0);
-  texels_ = gl::Buffer::fromVector(texels, 0);
+  textureInfos_ = gl::Buffer::fromVector({passes::kScene, "texture infos"}, infos, 0);
+  texels_ = gl::Buffer::fromVector({passes::kScene, "texels"}, texels, 0);
 
   for (const Texture& t : scene.textures) textures_.push_back(uploadTexture(t));
-  white_ = gl::Texture2D(1, 1, GL_RGBA8);
+  white_ = gl::Texture2D({passes::kScene, "white texture"}, 1, 1, GL_RGBA8);
   const std::uint8_t white[4] = {255, 255, 255, 255};
   white_.upload(GL_RGBA, GL_UNSIGNED_BYTE, white);
   gl::checkErrors("upload scene");

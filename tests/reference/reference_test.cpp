@@ -64,7 +64,7 @@ struct CornellFrame {
   // BruteForcePass on the renderer's G-buffer (shadowed through the GPU BVH when asked).
   ImageRGBA glBruteForce(bool shadowed) const {
     static BruteForcePass pass;
-    gl::Texture2D out(settings.image.width, settings.image.height, GL_RGBA32F);
+    gl::Texture2D out({"test", "out"}, settings.image.width, settings.image.height, GL_RGBA32F);
     pass.execute(
         {renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, shadowed ? &gpu : nullptr},
         renderer.clampDistance(), out);
@@ -163,8 +163,10 @@ TEST_F(ReferenceTest, VisibilityAgreesWithGpuBvh) {
   ASSERT_GT(rays.size(), 100000u);
   const std::vector<std::uint8_t> cpu = occlusion.occluded(rays);
 
-  gl::Buffer nodes = gl::Buffer::fromVector(f.gpu.bvh().nodes), tris = gl::Buffer::fromVector(f.gpu.bvh().triangles);
-  gl::Buffer rayBuffer = gl::Buffer::fromVector(gpuRays), hitBuffer(gpuRays.size() * sizeof(TestHit));
+  gl::Buffer nodes = gl::Buffer::fromVector({"test", "data"}, f.gpu.bvh().nodes),
+             tris = gl::Buffer::fromVector({"test", "data"}, f.gpu.bvh().triangles);
+  gl::Buffer rayBuffer = gl::Buffer::fromVector({"test", "data"}, gpuRays),
+             hitBuffer({"test", "hits"}, gpuRays.size() * sizeof(TestHit));
   nodes.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_NODES);
   tris.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_TRIANGLES);
   rayBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);

@@ -101,8 +101,10 @@ BruteForceHit bruteForce(const Mesh& mesh, const TestRay& ray) {
 }
 
 std::vector<TestHit> traceOnGpu(const Bvh& bvh, const std::vector<TestRay>& rays) {
-  gl::Buffer nodes = gl::Buffer::fromVector(bvh.nodes), tris = gl::Buffer::fromVector(bvh.triangles);
-  gl::Buffer rayBuffer = gl::Buffer::fromVector(rays), hitBuffer(rays.size() * sizeof(TestHit));
+  gl::Buffer nodes = gl::Buffer::fromVector({"test", "data"}, bvh.nodes),
+             tris = gl::Buffer::fromVector({"test", "data"}, bvh.triangles);
+  gl::Buffer rayBuffer = gl::Buffer::fromVector({"test", "data"}, rays),
+             hitBuffer({"test", "hits"}, rays.size() * sizeof(TestHit));
   nodes.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_NODES);
   tris.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_TRIANGLES);
   rayBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);

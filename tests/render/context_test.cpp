@@ -14,7 +14,7 @@ namespace {
 void expectScaleKernelWorks(size_t n) {
   std::vector<float> values(n);
   for (size_t i = 0; i < n; ++i) values[i] = float(i % 7);
-  gl::Buffer buffer = gl::Buffer::fromVector(values);
+  gl::Buffer buffer = gl::Buffer::fromVector({"test", "data"}, values);
   gl::Program program = gl::Program::compute("tests/scale_buffer.comp");
   program.set("factor", 2.0f);
   program.set("count", unsigned(n));

@@ -12,7 +12,7 @@ namespace lgh::test {
 inline ImageRGBA exactIrradiance(const Renderer& renderer, const SceneGpu* shadowing = nullptr) {
   static BruteForcePass bruteForce;  // one GL context per test process: the program is compiled once
   const RenderSettings& s = renderer.settings();
-  gl::Texture2D out(s.image.width, s.image.height, GL_RGBA32F);
+  gl::Texture2D out({"test", "out"}, s.image.width, s.image.height, GL_RGBA32F);
   bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count, shadowing},
                      renderer.clampDistance(), out);
   return fromGLRows(s.image.width, s.image.height, out.readRGBA());

@@ -37,7 +37,7 @@ struct GpuBuild {
 GpuBuild buildOnGpu(const std::vector<Light>& lights, LghBuildOptions options = {}) {
   static LghBuildPass pass(glContext().hasExtension("GL_NV_shader_atomic_float"));
   const std::vector<gpu::GpuLight> gpuLights = toGpuLights(lights);
-  const gl::Buffer buffer = gl::Buffer::fromVector(gpuLights);
+  const gl::Buffer buffer = gl::Buffer::fromVector({"test", "data"}, gpuLights);
   GpuBuild build;
   if (options.eMin <= 0) options.eMin = 1e-4;
   pass.execute(buffer, lights.size(), options, build.hierarchy);

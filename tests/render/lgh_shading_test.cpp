@@ -39,7 +39,8 @@ TEST_F(LghShadingTest, GlslMatchesCppReference) {
     c.normalRole = glm::vec4(glm::normalize(glm::vec3(g(rng), g(rng), g(rng))), float(i % 4));
     cases.push_back(c);
   }
-  gl::Buffer caseBuffer = gl::Buffer::fromVector(cases), resultBuffer(cases.size() * sizeof(glm::vec4));
+  gl::Buffer caseBuffer = gl::Buffer::fromVector({"test", "data"}, cases),
+             resultBuffer({"test", "results"}, cases.size() * sizeof(glm::vec4));
   caseBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   resultBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   gl::Program::compute("tests/lgh_shading.comp").dispatch1D(cases.size(), 64);

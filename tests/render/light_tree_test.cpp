@@ -35,7 +35,7 @@ void expectTreesEqual(const std::vector<Light>& lights) {
   // The CPU reference sees the lights as the GPU holds them.
   const std::vector<gpu::GpuLight> gpuLights = toGpuLights(lights);
   const LightTree cpu = buildLightTree(fromGpuLights(gpuLights));
-  const gl::Buffer buffer = gl::Buffer::fromVector(gpuLights);
+  const gl::Buffer buffer = gl::Buffer::fromVector({"test", "data"}, gpuLights);
   LightTreePass pass;
   GpuLightTree gpu;
   pass.execute(buffer, lights.size(), gpu);
@@ -80,7 +80,7 @@ TEST_F(LightTreeGpuTest, EqualsTheCpuReferenceAtPowersOfTwoAndOneMore) {
 TEST_F(LightTreeGpuTest, NoLightsNoTree) {
   LightTreePass pass;
   GpuLightTree tree;
-  pass.execute(gl::Buffer(sizeof(gpu::GpuLight)), 0, tree);
+  pass.execute(gl::Buffer({"test", "no lights"}, sizeof(gpu::GpuLight)), 0, tree);
   EXPECT_EQ(tree.leafCount, 0u);
   EXPECT_EQ(tree.levels, 0);
 }

@@ -49,14 +49,15 @@ std::vector<Light> clusteredLights(size_t count, uint32_t seed) {
 TEST_F(LightcutsTest, DescentsFollowTheReferenceProbabilities) {
   const std::vector<gpu::GpuLight> gpuLights = toGpuLights(clusteredLights(300, 5));
   const LightTree cpu = buildLightTree(fromGpuLights(gpuLights));
-  const gl::Buffer lights = gl::Buffer::fromVector(gpuLights);
+  const gl::Buffer lights = gl::Buffer::fromVector({"test", "data"}, gpuLights);
   LightTreePass pass;
   GpuLightTree tree;
   pass.execute(lights, gpuLights.size(), tree);
   const glm::vec3 x(0.5f, -0.5f, 0.25f), n = glm::normalize(glm::vec3(0.2f, 1.0f, 0.1f));
   gl::Program descent = gl::Program::compute("tests/light_tree_descent.comp");
   constexpr size_t kDescents = 400000;
-  gl::Buffer leaves(kDescents * sizeof(GLuint)), probabilities(kDescents * sizeof(float));
+  gl::Buffer leaves({"test", "leaves"}, kDescents * sizeof(GLuint)),
+      probabilities({"test", "probabilities"}, kDescents * sizeof(float));
   for (uint32_t start : {1u, 5u}) {
     SCOPED_TRACE("from node " + std::to_string(start));
     const std::vector<double> expected = leafProbabilities(cpu, start, glm::dvec3(x), glm::dvec3(n));

@@ -43,13 +43,14 @@ Pairs stableSorted(const Pairs& in) {
 }
 
 Pairs gpuSorted(gl::RadixSort& sort, const Pairs& in, int bits) {
-  const gl::Buffer keys = gl::Buffer::fromVector(in.keys), values = gl::Buffer::fromVector(in.values);
+  const gl::Buffer keys = gl::Buffer::fromVector({"test", "data"}, in.keys),
+                   values = gl::Buffer::fromVector({"test", "data"}, in.values);
   sort.sort(keys, values, in.keys.size(), bits);
   return {keys.download<GLuint>(in.keys.size()), values.download<GLuint>(in.keys.size())};
 }
 
 TEST_F(RadixSortTest, EqualsStableSortOfThirtyBitKeysWithDuplicates) {
-  gl::RadixSort sort;
+  gl::RadixSort sort("test");
   for (size_t count : {size_t(1), size_t(2), size_t(1000), size_t(1024), size_t(1025), (size_t(1) << 20) + 3}) {
     SCOPED_TRACE("count " + std::to_string(count));
     const Pairs in = randomPairs(count, 30, std::max<size_t>(count / 8, 1), uint32_t(count));
@@ -65,7 +66,7 @@ TEST_F(RadixSortTest, EqualsStableSortOfThirtyBitKeysWithDuplicates) {
 }
 
 TEST_F(RadixSortTest, OddPassCountsAndFullWidthKeys) {
-  gl::RadixSort sort;
+  gl::RadixSort sort("test");
   for (int bits : {12, 32}) {
     SCOPED_TRACE("bits " + std::to_string(bits));
     const Pairs in = randomPairs(5000, bits, 700, uint32_t(bits));

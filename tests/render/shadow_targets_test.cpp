@@ -56,7 +56,7 @@ TEST_F(ShadowTargetsTest, DrawsFollowImportanceShares) {
   }
   const std::vector<gpu::GpuLight> gpuLights = toGpuLights(lights);
   const std::vector<Light> seen = fromGpuLights(gpuLights);
-  const gl::Buffer buffer = gl::Buffer::fromVector(gpuLights);
+  const gl::Buffer buffer = gl::Buffer::fromVector({"test", "data"}, gpuLights);
   LghBuildPass build(glContext().hasExtension("GL_NV_shader_atomic_float"));
   ShadowTargetsPass targetsPass;
   constexpr unsigned kRaces = 16;

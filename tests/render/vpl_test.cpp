@@ -47,7 +47,7 @@ TEST_F(VplTest, ClosedBoxFirstBounceCarriesAlbedoTimesPower) {
     const SceneGpu gpu(scene);
     VplPass pass(gpu);
     const size_t budget = 100000;
-    gl::Buffer out(VplPass::maxVplCount(budget, 1) * sizeof(gpu::GpuLight));
+    gl::Buffer out({"test", "out"}, VplPass::maxVplCount(budget, 1) * sizeof(gpu::GpuLight));
     const size_t count = pass.tracePaths(out, 0, budget, 1, 7);
     EXPECT_EQ(count, budget) << "every path in a closed box must hit";
     const glm::dvec3 flux = totalFlux(out, count);
@@ -64,7 +64,7 @@ TEST_F(VplTest, EveryBounceKeepsAlbedoTimesThePreviousFlux) {
   const SceneGpu gpu(scene);
   VplPass pass(gpu);
   const size_t budget = 3 * 30000;
-  gl::Buffer out(VplPass::maxVplCount(budget, 3) * sizeof(gpu::GpuLight));
+  gl::Buffer out({"test", "out"}, VplPass::maxVplCount(budget, 3) * sizeof(gpu::GpuLight));
   const size_t count = pass.tracePaths(out, 0, budget, 3, 11);
   EXPECT_EQ(count, budget);
   // Bounces 1, 2, 3 reflect 0.5, 0.25 and 0.125 of the emitted power.
@@ -83,7 +83,7 @@ TEST_F(VplTest, OrderDependsOnlyOnTheSeed) {
   VplPass pass(gpu);
   const size_t budget = 3 * 20000, offset = 100;
   auto trace = [&](std::uint32_t seed) {
-    gl::Buffer out((offset + VplPass::maxVplCount(budget, 3)) * sizeof(gpu::GpuLight));
+    gl::Buffer out({"test", "out"}, (offset + VplPass::maxVplCount(budget, 3)) * sizeof(gpu::GpuLight));
     out.clear();
     const size_t count = pass.tracePaths(out, offset, budget, 3, seed);
     return out.download<gpu::GpuLight>(count, offset);
@@ -105,7 +105,7 @@ TEST_F(VplTest, CornellFirstBounceMatchesPowerTimesMeanHitAlbedo) {
   const SceneGpu gpu(scene);
   VplPass pass(gpu);
   const size_t budget = 200000;
-  gl::Buffer out(VplPass::maxVplCount(budget, 1) * sizeof(gpu::GpuLight));
+  gl::Buffer out({"test", "out"}, VplPass::maxVplCount(budget, 1) * sizeof(gpu::GpuLight));
   const size_t count = pass.tracePaths(out, 0, budget, 1, 3);
   const double gpuFlux = luminance(totalFlux(out, count));
 
@@ -150,14 +150,14 @@ TEST_F(VplTest, EmissiveTriangleSamplesCarryTheEmittedPower) {
   const SceneGpu gpu(scene);
   VplPass pass(gpu);
   const size_t samples = 100000;
-  gl::Buffer out(samples * sizeof(gpu::GpuLight));
+  gl::Buffer out({"test", "out"}, samples * sizeof(gpu::GpuLight));
   ASSERT_EQ(pass.sampleEmissiveTriangles(out, 0, samples, 5), samples);
   const glm::dvec3 flux = totalFlux(out, samples), expected = pass.emissiveTriangles().totalPower;
   // Luminance is exact (selection is proportional to it); each channel is a Monte Carlo estimate.
   EXPECT_NEAR(luminance(flux), luminance(expected), 1e-4 * luminance(expected));
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(flux[k], expected[k], 0.03 * luminance(expected));
   // Emissive triangles' paths: first-bounce VPLs carry at most the emitted power times the largest albedo.
-  gl::Buffer vpls(VplPass::maxVplCount(50000, 1) * sizeof(gpu::GpuLight));
+  gl::Buffer vpls({"test", "vpls"}, VplPass::maxVplCount(50000, 1) * sizeof(gpu::GpuLight));
   const size_t n = pass.tracePaths(vpls, 0, 50000, 1, 9);
   EXPECT_GT(n, 40000u);
   EXPECT_LT(luminance(totalFlux(vpls, n)), luminance(pass.emitters().totalPower));
