@@ -55,6 +55,9 @@ struct GpuBuildResult {
   int levels() const { return std::max(0, int(gridLightsPerLevel.size()) - 1); }
   double worstEnergyError = 0;  // max over levels and RGB of |sum I_level - sum I_S0| / sum I_S0
   int worstEnergyLevel = 0;
+  // GPU memory (gl::memory()): what the built hierarchy holds, and the most the build held above what
+  // was there before it (the hierarchy and its scratch together).
+  size_t hierarchyBytes = 0, buildPeakBytes = 0;
 };
 
 struct CpuBuildResult {
@@ -117,7 +120,12 @@ GpuBuildResult measureGpuBuild(LghBuildPass& pass, const gl::Buffer& lights, siz
   };
 
   const auto start = Clock::now();
+  hierarchy = {};
+  const size_t before = gl::memory().liveBytes();
+  gl::memory().resetPeak();
   build();
+  result.buildPeakBytes = gl::memory().peakBytes() - before;
+  result.hierarchyBytes = gl::memory().ownerBytes(passes::kLghBuild);
   for (int run = 0; withinBudget(start, run, options); ++run) {
     result.totalMs.push_back(build());
     for (const gl::PassTiming& timing : profiler.collect()) {
@@ -200,7 +208,7 @@ LightSetResult measureLightSet(size_t count, bool withCpu, const LightSource& so
   LightSetResult set;
   set.lights = count;
   const std::vector<gpu::GpuLight> gpuLights = toGpuLights(source.lights(count, options.seed));
-  const gl::Buffer buffer = gl::Buffer::fromVector(gpuLights);
+  const gl::Buffer buffer = gl::Buffer::fromVector({"bench", "lights"}, gpuLights);
   const glm::dvec3 s0Intensity = summedIntensity(gpuLights);
   LghBuildOptions buildOptions;
   buildOptions.levels = options.levels;
@@ -229,7 +237,7 @@ ChunkTestResult runChunkTest(const LightSource& source, LghBuildPass& pass, cons
   test.maxBlockBytes = size_t(maxBlock);
   const std::vector<gpu::GpuLight> gpuLights = toGpuLights(source.lights(test.lights, options.seed));
   test.lightBytes = gpuLights.size() * sizeof(gpu::GpuLight);
-  const gl::Buffer buffer = gl::Buffer::fromVector(gpuLights);
+  const gl::Buffer buffer = gl::Buffer::fromVector({"bench", "lights"}, gpuLights);
   LghBuildOptions buildOptions;
   buildOptions.levels = options.levels;
   buildOptions.eMin = source.eMin();
@@ -294,14 +302,20 @@ void printTable1(const LightSetResult& set) {
 }
 
 void printTable2(const std::vector<LightSetResult>& sets) {
-  std::printf("\nTable 2: total construction time vs light count (wall ms; median (min-max))\n");
-  TextTable table(
-      {"lights", "levels", "grid lights", kScatter.label, kGather.label, "scatter/gather", "CPU S1 + gather (double)"});
+  std::printf(
+      "\nTable 2: total construction time vs light count (wall ms; median (min-max)); GPU memory of the S1 + gather "
+      "hierarchy (MB held after the build, the build's peak above what was held before it, bytes per input light)\n");
+  TextTable table({"lights", "levels", "grid lights", kScatter.label, kGather.label, "scatter/gather",
+                   "CPU S1 + gather (double)", "MB held", "build peak", "B / light"});
   for (const LightSetResult& set : sets) {
+    char perLight[32];
+    std::snprintf(perLight, sizeof perLight, "%.1f",
+                  double(set.gather.hierarchyBytes) / double(std::max<size_t>(set.lights, 1)));
     table.addRow({formatCount(set.lights), std::to_string(set.gather.levels()), formatCount(set.gather.gridLights),
                   formatSpread(spreadOf(set.scatter.totalMs)), formatSpread(spreadOf(set.gather.totalMs)),
                   formatRatio(medianRatio(set.scatter.totalMs, set.gather.totalMs)),
-                  set.cpu.totalMs.empty() ? set.cpu.skipped : formatSpread(spreadOf(set.cpu.totalMs))});
+                  set.cpu.totalMs.empty() ? set.cpu.skipped : formatSpread(spreadOf(set.cpu.totalMs)),
+                  formatMegabytes(set.gather.hierarchyBytes), formatMegabytes(set.gather.buildPeakBytes), perLight});
   }
   table.print(stdout);
   if (std::any_of(sets.begin(), sets.end(), [](const LightSetResult& s) { return !s.cpu.skipped.empty(); }))
@@ -340,6 +354,7 @@ struct TimingRow {
   std::vector<double> samples;
   int levels;
   std::optional<size_t> gridLights;
+  std::optional<size_t> bytes, peakBytes;  // GPU memory, "total" rows of the GPU builds
 };
 
 std::vector<TimingRow> timingRows(const std::vector<LightSetResult>& sets) {
@@ -349,23 +364,27 @@ std::vector<TimingRow> timingRows(const std::vector<LightSetResult>& sets) {
       for (const std::string& step : result->steps) {
         const int level = levelOfStep(step);
         rows.push_back({set.lights, method->key, step, result->stepMs.at(step), result->levels(),
-                        level >= 1 ? std::optional(result->gridLightsPerLevel[size_t(level)]) : std::nullopt});
+                        level >= 1 ? std::optional(result->gridLightsPerLevel[size_t(level)]) : std::nullopt,
+                        std::nullopt, std::nullopt});
       }
-      rows.push_back({set.lights, method->key, "total", result->totalMs, result->levels(), result->gridLights});
+      rows.push_back({set.lights, method->key, "total", result->totalMs, result->levels(), result->gridLights,
+                      result->hierarchyBytes, result->buildPeakBytes});
     }
     if (!set.cpu.totalMs.empty())
-      rows.push_back({set.lights, "cpu_gather", "total", set.cpu.totalMs, set.cpu.levels, set.cpu.gridLights});
+      rows.push_back({set.lights, "cpu_gather", "total", set.cpu.totalMs, set.cpu.levels, set.cpu.gridLights,
+                      std::nullopt, std::nullopt});
   }
   return rows;
 }
 
 void writeCsv(std::ofstream& out, const std::vector<TimingRow>& rows) {
-  out << "lights,method,step,median_ms,min_ms,max_ms,runs,levels,grid_lights\n";
+  out << "lights,method,step,median_ms,min_ms,max_ms,runs,levels,grid_lights,bytes,peak_bytes\n";
+  auto optional = [](const std::optional<size_t>& v) { return v ? std::to_string(*v) : std::string(); };
   for (const TimingRow& row : rows) {
     const Spread s = spreadOf(row.samples);
     out << row.lights << ',' << row.method << ',' << row.step << ',' << s.median << ',' << s.min << ',' << s.max << ','
-        << row.samples.size() << ',' << row.levels << ',' << (row.gridLights ? std::to_string(*row.gridLights) : "")
-        << '\n';
+        << row.samples.size() << ',' << row.levels << ',' << optional(row.gridLights) << ',' << optional(row.bytes)
+        << ',' << optional(row.peakBytes) << '\n';
   }
 }
 
@@ -382,7 +401,9 @@ nlohmann::json toJson(const std::vector<TimingRow>& rows, const std::vector<Ligh
                        {"max_ms", s.max},
                        {"samples_ms", row.samples},
                        {"levels", row.levels},
-                       {"grid_lights", row.gridLights ? nlohmann::json(*row.gridLights) : nlohmann::json()}});
+                       {"grid_lights", row.gridLights ? nlohmann::json(*row.gridLights) : nlohmann::json()},
+                       {"bytes", row.bytes ? nlohmann::json(*row.bytes) : nlohmann::json()},
+                       {"peak_bytes", row.peakBytes ? nlohmann::json(*row.peakBytes) : nlohmann::json()}});
   }
   nlohmann::json lightSets = nlohmann::json::array();
   for (const LightSetResult& set : sets) {
@@ -401,6 +422,8 @@ nlohmann::json toJson(const std::vector<TimingRow>& rows, const std::vector<Ligh
                           {"levels", chunkTest->gather.levels()},
                           {"grid_lights", chunkTest->gather.gridLights},
                           {"total_ms", chunkTest->gather.totalMs},
+                          {"hierarchy_bytes", chunkTest->gather.hierarchyBytes},
+                          {"build_peak_bytes", chunkTest->gather.buildPeakBytes},
                           {"worst_energy_error", chunkTest->gather.worstEnergyError}};
   return json;
 }

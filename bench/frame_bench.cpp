@@ -64,6 +64,10 @@ struct FrameTimes {
   std::map<int, std::map<std::string, std::vector<double>>> passMs;  // [n][pass] -> samples
   std::map<int, std::vector<double>> totalMs;
   std::map<int, double> fragments;
+  // GPU memory: what each owner (pass names, "scene", ...) holds after the timed frames, in all, and the
+  // peak while they ran.
+  std::map<int, std::map<std::string, size_t>> ownerBytes;
+  std::map<int, size_t> heldBytes, peakBytes;
   LightStats lights;  // of the last counted frame
   bool nonFinite = false;
 };
@@ -78,6 +82,8 @@ FrameTimes measureFrames(RenderBench& bench, const RenderSettings& settings, con
     t.fragments[n] = counted.lights.rasterizedPerPixel;
     t.lights = counted.lights;
     s.lightPass.overdraw = false;
+    bench.renderer().render(s);  // without the counter: the memory measured is the timed frames'
+    gl::memory().resetPeak();
     for (int r = 0; r < options.repeats; ++r) {
       s.inputLights.seed =
           settings.inputLights.seed + 1 + r;  // new VPLs every frame, as with moving lights: every pass runs
@@ -98,9 +104,42 @@ FrameTimes measureFrames(RenderBench& bench, const RenderSettings& settings, con
         t.passMs[n][kPaperShadowRays].push_back(bench.renderer().render(paper).passMs(passes::kShadowRays));
       }
     }
+    for (const gl::MemoryRegistry::Owner& o : gl::memory().byOwner()) t.ownerBytes[n][o.owner] = o.bytes;
+    t.heldBytes[n] = gl::memory().liveBytes();
+    t.peakBytes[n] = gl::memory().peakBytes();
     std::fprintf(stderr, "  %dx%d done\n", n, n);
   }
   return t;
+}
+
+// What the frame holds of the GPU's memory by owner (the passes' names, the scene), per interleaving.
+void printMemory(const FrameBenchOptions& options, FrameTimes& t) {
+  std::printf("\nGPU memory after the timed frames, MB by owner (gl::memory(), the engine's buffers and textures)\n\n");
+  std::vector<std::string> headers{"owner"};
+  for (int n : options.interleave) headers.push_back(std::to_string(n) + "x" + std::to_string(n));
+  TextTable table(headers);
+  std::vector<std::string> owners;  // in the order of the first interleaving's bytes, largest first
+  for (int n : options.interleave)
+    for (const auto& [owner, bytes] : t.ownerBytes[n])
+      if (std::find(owners.begin(), owners.end(), owner) == owners.end()) owners.push_back(owner);
+  const int first = options.interleave.front();
+  std::stable_sort(owners.begin(), owners.end(), [&](const std::string& a, const std::string& b) {
+    return t.ownerBytes[first][a] > t.ownerBytes[first][b];
+  });
+  for (const std::string& owner : owners) {
+    std::vector<std::string> row{owner};
+    for (int n : options.interleave)
+      row.push_back(t.ownerBytes[n].count(owner) ? formatMegabytes(t.ownerBytes[n][owner]) : "-");
+    table.addRow(row);
+  }
+  std::vector<std::string> held{"total"}, peak{"peak"};
+  for (int n : options.interleave) {
+    held.push_back(formatMegabytes(t.heldBytes[n]));
+    peak.push_back(formatMegabytes(t.peakBytes[n]));
+  }
+  table.addRow(held);
+  table.addRow(peak);
+  table.print(stdout);
 }
 
 void printFrames(RenderBench& bench, const RenderSettings& settings, const FrameBenchOptions& options, FrameTimes& t) {
@@ -156,6 +195,7 @@ void printFrames(RenderBench& bench, const RenderSettings& settings, const Frame
   table.addRow(total);
   table.addRow(frags);
   table.print(stdout);
+  printMemory(options, t);
 }
 
 // The stochastic lightcuts on the same lights: the tree build step by step (LightTreePass's profiler scopes
@@ -245,16 +285,23 @@ void printLightcuts(const RenderSettings& settings, const FrameBenchOptions& opt
 void writeCsv(const std::string& path, const FrameBenchOptions& options, FrameTimes& t) {
   std::ofstream csv(path);
   if (!csv) throw std::runtime_error(path + ": cannot open for writing");
-  csv << "interleave,pass,median_ms,min_ms,max_ms\n";
-  auto row = [&](int n, const std::string& name, const std::vector<double>& samples) {
+  // bytes: the GPU memory the pass (as an owner) holds after the timed frames; total: all of it, and the
+  // peak while they ran. Owners that are not passes (the scene) get rows of their own, without times.
+  csv << "interleave,pass,median_ms,min_ms,max_ms,bytes,peak_bytes\n";
+  auto row = [&](int n, const std::string& name, const std::vector<double>& samples, size_t bytes, std::string peak) {
     const Spread s = spreadOf(samples);
-    csv << n << "," << name << "," << s.median << "," << s.min << "," << s.max << "\n";
+    csv << n << "," << name << "," << s.median << "," << s.min << "," << s.max << "," << bytes << "," << peak << "\n";
   };
   for (int n : options.interleave) {
-    for (const std::string& pass : kPasses) row(n, pass, t.passMs[n][pass]);
-    if (options.compareCubes) row(n, kCubeLightPass, t.passMs[n][kCubeLightPass]);
-    if (options.compareTargets) row(n, kPaperShadowRays, t.passMs[n][kPaperShadowRays]);
-    row(n, "total", t.totalMs[n]);
+    std::map<std::string, size_t> owners = t.ownerBytes[n];
+    for (const std::string& pass : kPasses) {
+      row(n, pass, t.passMs[n][pass], owners[pass], "");
+      owners.erase(pass);
+    }
+    if (options.compareCubes) row(n, kCubeLightPass, t.passMs[n][kCubeLightPass], 0, "");
+    if (options.compareTargets) row(n, kPaperShadowRays, t.passMs[n][kPaperShadowRays], 0, "");
+    for (const auto& [owner, bytes] : owners) csv << n << "," << owner << ",,,," << bytes << ",\n";
+    row(n, "total", t.totalMs[n], t.heldBytes[n], std::to_string(t.peakBytes[n]));
   }
 }
 

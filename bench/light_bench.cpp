@@ -38,6 +38,8 @@ struct SweepRow {
   VolumePath cubes, culled;          // the paper's cubes, and culled volumes
   std::vector<double> buildMs;       // 1x1 rows only
   std::vector<double> bruteForceMs;  // 1x1 rows only; empty when over the limit
+  // GPU memory after the culled frames (gl::memory()): S0, the hierarchy, the light pass, everything.
+  size_t inputLightBytes = 0, hierarchyBytes = 0, lightPassBytes = 0, heldBytes = 0;
   double speedUp() const { return cubes.medianMs() / std::max(culled.medianMs(), 1e-30); }
 };
 
@@ -78,6 +80,10 @@ SweepRow measureVolumes(const RenderFrame& frame, RenderSettings s, int repeats)
       const double ms = frame(s).passMs(passes::kLightPass);
       if (r >= 0) (culling ? row.culled : row.cubes).lightPassMs.push_back(ms);
     }
+  row.inputLightBytes = gl::memory().ownerBytes(passes::kInputLights);
+  row.hierarchyBytes = gl::memory().ownerBytes(passes::kLghBuild);
+  row.lightPassBytes = gl::memory().ownerBytes(passes::kLightPass);
+  row.heldBytes = gl::memory().liveBytes();
   return row;
 }
 
@@ -97,7 +103,8 @@ void measureBuildAndBruteForce(const RenderFrame& frame, RenderSettings s, int s
 
 void printSweep(const std::vector<SweepRow>& rows, const LightBenchOptions& options) {
   TextTable sweep({"input lights", "tiles", "L", "grid lights drawn", "fragments/px cube", "culled", "shaded/px",
-                   "efficiency cube", "culled", "light pass ms cube", "culled", "speed-up"});
+                   "efficiency cube", "culled", "light pass ms cube", "culled", "speed-up", "MB S0", "LGH",
+                   "light pass", "all"});
   for (const SweepRow& r : rows) {
     size_t drawn = 0;
     for (size_t n : r.lightsPerLevel) drawn += n;
@@ -108,9 +115,12 @@ void printSweep(const std::vector<SweepRow>& rows, const LightBenchOptions& opti
                   std::to_string(r.levels), formatCount(drawn), formatMs(r.cubes.rasterizedPerPixel),
                   formatMs(r.culled.rasterizedPerPixel), formatMs(r.culled.shadedPerPixel), eCube, eCulled,
                   formatSpread(spreadOf(r.cubes.lightPassMs)), formatSpread(spreadOf(r.culled.lightPassMs)),
-                  formatRatio(r.speedUp())});
+                  formatRatio(r.speedUp()), formatMegabytes(r.inputLightBytes), formatMegabytes(r.hierarchyBytes),
+                  formatMegabytes(r.lightPassBytes), formatMegabytes(r.heldBytes)});
   }
-  std::printf("Light pass vs input lights (S0 = VPLs): the paper's cubes and culled volumes, timed alternately\n");
+  std::printf(
+      "Light pass vs input lights (S0 = VPLs): the paper's cubes and culled volumes, timed alternately; GPU memory "
+      "held (MB)\n");
   sweep.print(stdout);
   // Growth from the smallest to the largest count, per tiling and path (the paper: x2.4 from 1K to 1M).
   for (int n : options.tiles) {
@@ -180,7 +190,7 @@ std::vector<InterleaveRow> measureInterleaving(RenderBench& bench, const RenderF
       none = image;
       if (options.exactError) {
         BruteForcePass bruteForce;
-        gl::Texture2D out(settings.image.width, settings.image.height, GL_RGBA32F);
+        gl::Texture2D out({"bench", "brute force"}, settings.image.width, settings.image.height, GL_RGBA32F);
         bruteForce.execute({renderer.gbuffer(), renderer.inputLights().lights, renderer.inputLights().count},
                            renderer.clampDistance(), out);
         exact = fromGLRows(settings.image.width, settings.image.height, out.readRGBA());
@@ -221,7 +231,7 @@ void writeCsv(std::ostream& csv, const std::vector<SweepRow>& rows, const std::v
               size_t interleaveInputLights, const LightBenchOptions& options) {
   csv << "table,input_lights,vpl_budget,levels,interleave,volumes,fragments_per_pixel,shaded_per_pixel,efficiency,"
          "light_pass_ms_median,light_pass_ms_min,light_pass_ms_max,brute_force_ms_median,build_ms_median,"
-         "error_vs_1x1,error_vs_exact\n";
+         "error_vs_1x1,error_vs_exact,input_light_bytes,hierarchy_bytes,light_pass_bytes,gpu_bytes\n";
   for (const SweepRow& r : rows)
     for (bool culling : {false, true}) {
       const VolumePath& p = culling ? r.culled : r.cubes;
@@ -230,7 +240,8 @@ void writeCsv(std::ostream& csv, const std::vector<SweepRow>& rows, const std::v
           << (culling ? "culled" : "cube") << "," << p.rasterizedPerPixel << "," << p.shadedPerPixel << ","
           << p.efficiency() << "," << t.median << "," << t.min << "," << t.max << ","
           << (r.bruteForceMs.empty() ? std::string() : std::to_string(spreadOf(r.bruteForceMs).median)) << ","
-          << (r.buildMs.empty() ? std::string() : std::to_string(spreadOf(r.buildMs).median)) << ",,\n";
+          << (r.buildMs.empty() ? std::string() : std::to_string(spreadOf(r.buildMs).median)) << ",,,"
+          << r.inputLightBytes << "," << r.hierarchyBytes << "," << r.lightPassBytes << "," << r.heldBytes << "\n";
     }
   const bool culled = options.render.settings.lightPass.volumeCulling;
   for (const InterleaveRow& r : interleaved) {
@@ -238,7 +249,7 @@ void writeCsv(std::ostream& csv, const std::vector<SweepRow>& rows, const std::v
     csv << "interleave," << interleaveInputLights << "," << options.interleaveVpls << ",," << r.n << ","
         << (culled ? "culled" : "cube") << "," << r.rasterizedPerPixel << ",,," << t.median << "," << t.min << ","
         << t.max << ",,," << r.errorVsNone << ","
-        << (r.errorVsExact < 0 ? std::string() : std::to_string(r.errorVsExact)) << "\n";
+        << (r.errorVsExact < 0 ? std::string() : std::to_string(r.errorVsExact)) << ",,,,\n";
   }
 }
 
@@ -269,7 +280,12 @@ void writeJson(std::ostream& out, RenderBench& bench, const std::vector<SweepRow
                          {"culled", volumes(r.culled)},
                          {"speed_up", r.speedUp()},
                          {"build_ms", r.buildMs},
-                         {"brute_force_ms", r.bruteForceMs}});
+                         {"brute_force_ms", r.bruteForceMs},
+                         {"gpu_bytes",
+                          {{"input_lights", r.inputLightBytes},
+                           {"hierarchy", r.hierarchyBytes},
+                           {"light_pass", r.lightPassBytes},
+                           {"all", r.heldBytes}}}});
   for (const InterleaveRow& r : interleaved)
     j["interleave"].push_back({{"n", r.n},
                                {"fragments_per_pixel", r.rasterizedPerPixel},

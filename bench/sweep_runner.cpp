@@ -278,7 +278,7 @@ class SweepRunner::Baselines {
         images_(images),
         lights_(lights),
         clamp_(renderer_.clampDistance()),
-        target_(base.image.width, base.image.height, GL_RGBA32F) {}
+        target_({"bench", "subsampling target", kImageSize}, base.image.width, base.image.height, GL_RGBA32F) {}
 
   // Every baseline, in the order of the outputs.
   std::vector<Measurement> measure();
@@ -335,7 +335,7 @@ std::vector<Measurement> SweepRunner::Baselines::measure() {
 
 // Compiles the brute-force variant of the light pass and the compute brute force.
 void SweepRunner::Baselines::warmUp() {
-  const gl::Buffer one = gl::Buffer::fromVector(uniformSubset(lights_, 1, 1));
+  const gl::Buffer one = gl::Buffer::fromVector({"bench", "lights"}, uniformSubset(lights_, 1, 1));
   rasterizedBruteForce(one, 1);
   runner_.bruteForce_.execute({renderer_.gbuffer(), one, 1, &gpu_}, clamp_, target_);
 }
@@ -359,7 +359,7 @@ Measurement SweepRunner::Baselines::uniform(size_t m, bool shadowed) {
   const int repeats = runner_.options_.repeats;
   for (int r = 0; r < repeats; ++r) {
     const std::uint32_t seed = std::uint32_t(1000003u * m + 7919u * unsigned(r) + 17u);
-    const gl::Buffer buffer = gl::Buffer::fromVector(uniformSubset(lights_, m, seed));
+    const gl::Buffer buffer = gl::Buffer::fromVector({"bench", "lights"}, uniformSubset(lights_, m, seed));
     double ms = 0;
     u.othersCpu = std::max(u.othersCpu, runner_.sampler_.sample([&] {
       ms = timedMs([&] {

@@ -68,4 +68,10 @@ std::string shortCount(size_t n) {
   return buffer;
 }
 
+std::string formatMegabytes(size_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", double(bytes) / 1e6);
+  return text;
+}
+
 }  // namespace lgh::bench

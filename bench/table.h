@@ -26,5 +26,6 @@ std::string formatMs(double ms);            // 3 significant digits down to 0.01
 std::string formatSpread(const Spread& s);  // "12.1 (11.9-13.0)"; "12.1" when min == max
 std::string formatRatio(double ratio);      // "174x", "4.6x", "0.98x"
 std::string shortCount(size_t n);           // 1K, 100K, 1M, 4.5M: for labels
+std::string formatMegabytes(size_t bytes);  // MB, two decimals: 0.03, 12.40, 1024.00
 
 }  // namespace lgh::bench

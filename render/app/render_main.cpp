@@ -114,6 +114,13 @@ void printSummary(const Command& c, const lgh::gl::Context& context, const lgh::
   std::printf("passes     (wall ms, glFinish-bracketed)\n");
   for (const auto& p : stats.passes) std::printf("  %-18s %9.2f\n", p.name.c_str(), p.wallMs);
   std::printf("  %-18s %9.2f\n", "total", stats.totalMs());
+  const lgh::gl::MemoryRegistry& memory = lgh::gl::memory();
+  std::printf("GPU memory (buffers and textures by owner, after the last frame)\n");
+  for (const auto& o : memory.byOwner())
+    std::printf("  %-18s %10s  %3zu %s\n", o.owner.c_str(), lgh::gl::formatBytes(double(o.bytes)).c_str(), o.objects,
+                o.objects == 1 ? "object" : "objects");
+  std::printf("  %-18s %10s, peak %s\n", "total", lgh::gl::formatBytes(double(memory.liveBytes())).c_str(),
+              lgh::gl::formatBytes(double(memory.peakBytes())).c_str());
 }
 
 int run(int argc, char** argv) {
@@ -142,6 +149,7 @@ int run(int argc, char** argv) {
   const auto context = lgh::gl::Context::create(contextOptions);
 
   const auto t1 = Clock::now();
+  lgh::gl::memory().setLimit(size_t(double(settings.gpuMemoryLimit) * 1e6));  // the scene counts too
   const lgh::SceneGpu sceneGpu(scene);
   lgh::Renderer renderer(sceneGpu, settings);
   const double setupMs = msSince(t1);

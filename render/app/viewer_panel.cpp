@@ -10,6 +10,7 @@
 #include <iterator>
 #include <type_traits>
 
+#include "render/gl/memory.h"
 #include "render/scene/added_lights.h"
 
 namespace lgh {
@@ -199,6 +200,9 @@ void drawStatus(const ViewerState& state, const PanelInfo& info) {
         ImGui::Text("overdraw %.1f fragments/pixel (max %u), %.1f shaded, efficiency %.2f", l.rasterizedPerPixel,
                     l.maxRasterized, l.shadedPerPixel, l.efficiency());
     }
+    const gl::MemoryRegistry& memory = gl::memory();
+    ImGui::Text("GPU memory %s (peak %s)", gl::formatBytes(double(memory.liveBytes())).c_str(),
+                gl::formatBytes(double(memory.peakBytes())).c_str());
     if (f->nonFinitePixels > 0) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%u NaN/Inf pixels", f->nonFinitePixels);
   }
   if (!info.message.empty()) {
@@ -271,6 +275,21 @@ void drawLightsSection(ViewerState& state, const Scene& scene, PanelRequests& re
   ImGui::TextDisabled("a change rebuilds the VPLs and the hierarchy");
 }
 
+// What each owner (a pass, the scene, the viewer's display) holds of the GPU's memory now.
+void drawMemorySection() {
+  if (!ImGui::BeginTable("memory", 3, ImGuiTableFlags_SizingStretchProp)) return;
+  for (const gl::MemoryRegistry::Owner& o : gl::memory().byOwner()) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(o.owner.c_str());
+    ImGui::TableNextColumn();
+    ImGui::Text("%s", gl::formatBytes(double(o.bytes)).c_str());
+    ImGui::TableNextColumn();
+    ImGui::TextDisabled("%zu objects", o.objects);
+  }
+  ImGui::EndTable();
+}
+
 // The per-pass timings in their own window, pinned to the bottom right corner (growing upwards as
 // passes appear), so they stay in sight while settings change.
 void drawTimingsWindow(const TimingHistory& timings, float em) {
@@ -297,6 +316,7 @@ PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
     drawStatus(state, info);
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) drawViewSection(state, info, requests);
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) drawCameraSection(state, requests);
+    if (ImGui::CollapsingHeader("GPU memory by owner")) drawMemorySection();
     if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen))
       drawLightsSection(state, *info.scene, requests);
     bool settingsChanged = false;
