@@ -2,6 +2,7 @@
 //   lgh-bench build [--lights 1K,10K,100K,1M --repeats N --csv F --json F ...]   (paper Tables 1 and 2)
 //   lgh-bench light [--vpls 1K,10K,100K,1M --interleave-vpls 100K ...]           (paper Fig. 5, interleaving)
 //   lgh-bench frame [--vpls 100K --shadow-samples 4 --interleave 1,2,4 ...]        (paper Table 3)
+//   lgh-bench memory [--vpls 1K,10K,100K,1M,4.5M --sizes 320x180,640x360 ...]      (GPU memory by owner)
 //   lgh-bench sweep [--preset readme|smoke --scene S@CAM --alpha ... --csv ...]      (docs/design.md §7: error vs time)
 //   lgh-bench reference --scene S@CAM --vpls 1M [--out ref.exr ...]                 (docs/design.md §13: MPI,
 //   resumable)
@@ -14,6 +15,7 @@
 #include "bench/build_bench.h"
 #include "bench/frame_bench.h"
 #include "bench/light_bench.h"
+#include "bench/memory_bench.h"
 #include "bench/ranks.h"
 #ifdef LGH_HAVE_REFERENCE
 #include "bench/reference_bench.h"
@@ -36,10 +38,12 @@ int run(int argc, char** argv) {
   lgh::bench::BuildBenchOptions buildOptions;
   lgh::bench::LightBenchOptions lightOptions;
   lgh::bench::FrameBenchOptions frameOptions;
+  lgh::bench::MemoryBenchOptions memoryOptions;
   std::vector<Benchmark> benchmarks = {
       {lgh::bench::addBuildCommand(app, buildOptions), [&] { return lgh::bench::runBuildBench(buildOptions); }},
       {lgh::bench::addLightCommand(app, lightOptions), [&] { return lgh::bench::runLightBench(lightOptions); }},
       {lgh::bench::addFrameCommand(app, frameOptions), [&] { return lgh::bench::runFrameBench(frameOptions); }},
+      {lgh::bench::addMemoryCommand(app, memoryOptions), [&] { return lgh::bench::runMemoryBench(memoryOptions); }},
   };
 #ifdef LGH_HAVE_REFERENCE  // the sweep needs the Embree reference (bench/reference.h)
   lgh::bench::SweepOptions sweepOptions;

@@ -24,7 +24,9 @@ layout(std430, binding = LGH_BINDING_PUNCTUAL_LIGHTS) readonly buffer PunctualLi
 layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Emitters { GpuEmitter emitters[]; };
 layout(std430, binding = LGH_BINDING_PASS1) writeonly buffer Output { GpuLight outputLights[]; };
 
-uniform uint sampleCount;      // paths, or emitter samples
+uniform uint sampleCount;      // paths, or emitter samples, in all batches
+uniform uint firstSample;      // this batch's first (a batch's records fit one storage block)
+uniform uint batchCount;       // and its count
 uniform uint maxBounces;
 uniform uint seed;
 uniform uint outputOffset;     // first element of outputLights this pass writes
@@ -55,8 +57,9 @@ void sampleEmissiveTriangle(GpuEmitter e, inout Rng rng, out vec3 position, out 
 }
 
 void main() {
-  uint index = lghGlobalIndex();
-  if (index >= sampleCount || emitters.length() == 0) return;
+  uint local = lghGlobalIndex();
+  if (local >= batchCount || emitters.length() == 0) return;
+  uint index = firstSample + local;  // the sample's random sequence is its own, whatever the batches
   Rng rng = makeRng(index, seed);
   GpuEmitter e = emitters[chooseEmitter(nextFloat(rng))];
   float scale = 1.0 / (e.selectionPdf * float(sampleCount));
@@ -66,7 +69,7 @@ void main() {
   vec3 position, normal, radiance;
   sampleEmissiveTriangle(e, rng, position, normal, radiance);
   float area = 0.5 * length(cross(e.edge1, e.edge2));
-  emit(index, position, normal, radiance * area * scale);
+  emit(local, position, normal, radiance * area * scale);
 #else
   vec3 origin, direction, flux;
   if (e.kind == kEmitterTriangle) {
@@ -105,7 +108,7 @@ void main() {
     HitSurface s = hitSurface(origin, direction, hit);
     flux *= s.albedo;  // the flux the surface reflects
     if (!(luminance(flux) > 0.0)) break;
-    emit(index * maxBounces + bounce, s.position, s.normal, flux * (1.0 / kPi));
+    emit(local * maxBounces + bounce, s.position, s.normal, flux * (1.0 / kPi));
     origin = offsetRayOrigin(s.position, s.normal);
     direction = sampleCosineHemisphere(vec2(nextFloat(rng), nextFloat(rng)), s.normal);
   }

@@ -130,35 +130,36 @@ void Renderer::allocateTargets() {
   auto make = [&](const char* owner, const char* name, GLenum format) {
     return gl::Texture2D({owner, name, kImageSize}, w, h, format);
   };
-  // Old targets go before new ones are counted (a resize holds one set at a time).
+  // What the old configuration held goes before the new is allocated: a switch holds one set at a time.
   gbuffer_ = {};
+  tiles_ = {};
+  for (gl::Texture2D* t : {&direct_, &indirect_, &final_, &irradiance_, &fragmentCounts_, &rawRatio_,
+                           &sampledIrradiance_, &visibility_, &filteredIrradiance_, &neutralAov_})
+    *t = {};
+  releaseUnused();
   gbuffer_ = GBuffer(w, h);
   direct_ = make(passes::kDirectLight, "direct", GL_RGBA32F);
   indirect_ = make(passes::kComposite, "indirect", GL_RGBA32F);
   final_ = make(passes::kComposite, "final", GL_RGBA32F);
   // The rest only where the configuration's passes write them.
-  tiles_ = {};
   if (c.lgh && c.interleave > 1) tiles_ = Tiles(TileLayout::of(c.interleave, w, h), c.overdraw);
-  irradiance_ = {};
   if (c.lgh || c.lightcuts)
     irradiance_ = make(c.lgh ? passes::kLightPass : passes::kLightcutSampling, "irradiance", GL_RGBA32F);
-  fragmentCounts_ = {};
   if (c.overdraw) {
     fragmentCounts_ = make(passes::kLightPass, "fragment counts", GL_R32UI);
     fragmentCounts_.clearUint(0);
   }
-  // The raw ratio and the sampled irradiance: the shadow rays' outputs, and the accumulation's (for the
-  // lightcuts an unused ratio beside their irradiance).
-  for (gl::Texture2D* t : {&rawRatio_, &sampledIrradiance_, &visibility_, &filteredIrradiance_, &neutralAov_}) *t = {};
+  // The raw ratio and the sampled irradiance: the shadow rays' outputs, and the accumulation's (unshadowed,
+  // and for the lightcuts, a ratio of 1 beside the irradiance).
   if (c.shadowed || c.accumulating) {
-    rawRatio_ = make(passes::kShadowRays, "ratio", GL_RGBA32F);
+    const char* owner = c.shadowed ? passes::kShadowRays : passes::kAccumulation;
+    rawRatio_ = make(owner, "ratio", GL_RGBA32F);
     rawRatio_.clear(glm::vec4(1.0f));
-    sampledIrradiance_ = make(passes::kShadowRays, "sampled irradiance", GL_R32F);
+    sampledIrradiance_ = make(owner, "sampled irradiance", GL_R32F);
     sampledIrradiance_.clear(glm::vec4(0.0f));
   }
   if (c.shadowed) visibility_ = make(passes::kShadowFilter, "visibility", GL_RGBA32F);
   if (c.lightcuts) filteredIrradiance_ = make(passes::kIrradianceFilter, "filtered irradiance", GL_RGBA32F);
-  releaseUnused();
   gl::checkErrors("allocating render targets");
 }
 
@@ -294,7 +295,7 @@ FrameStats Renderer::render(const CameraView& view) {
   if (settings_.indirect && lightcuts()) {
     // Stochastic lightcuts, the peer method (docs/design.md §12): a cut of the light tree per pixel block, one
     // light drawn under each cut node per pixel with its shadow ray: the shadowed irradiance, unbiased.
-    const RtslcInputs in{scene_, gbuffer_, inputLights_.lights, lightTree_};
+    const RtslcInputs in{scene_, gbuffer_, inputLights_.lights, inputLights_.count, lightTree_};
     const RtslcOptions options = rtslcOptions();
     timed(passes::kLightcutCuts, [&] { rtslcPass_.selectCuts(in, options); });
     timed(passes::kLightcutSampling, [&] { rtslcPass_.sample(in, options, {irradiance_}); });
@@ -343,8 +344,8 @@ FrameStats Renderer::render(const CameraView& view) {
     // Shadow rays to the picked lights: the raw visibility ratio.
     if (shadowed())
       timed(passes::kShadowRays, [&] {
-        shadowRayPass_.execute({scene_, gbuffer_, inputLights_.lights, hierarchy_, shadowTargets_, shadowSlots_,
-                                target.layout, target.irradiance},
+        shadowRayPass_.execute({scene_, gbuffer_, inputLights_.lights, inputLights_.count, hierarchy_, shadowTargets_,
+                                shadowSlots_, target.layout, target.irradiance},
                                shadowRayOptions(options), {rawRatio_, sampledIrradiance_});
       });
     // Temporal accumulation: this frame's raw irradiance and ratio added to the history reprojected from

@@ -180,11 +180,10 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(s.directShadows, SettingInfo{"direct-shadows", "trace shadow rays for direct light"});
   visit(s.clampDistance,
         SettingInfo{"clamp-distance", "d_c in 1/max(d^2, d_c^2), metres (0: 1e-2 x scene diagonal)", 0, 1e9});
-  visit(s.gpuMemoryLimit, SettingInfo{"gpu-memory-limit",
-                                      "MB the renderer's GPU objects may hold together (0: no limit but the free "
-                                      "memory the device reports, where it reports it)",
-                                      0, 1e9}
-                              .keepingHistory());
+  visit(s.gpuMemoryLimit,
+        SettingInfo{"gpu-memory-limit",
+                    "MB the GPU buffers and textures may hold (0: the free memory the device reports)", 0, 1e9}
+            .keepingHistory());
   visit(s.indirect, SettingInfo{"indirect", "indirect light through the LGH (false: direct light only)"});
   visit(s.indirectMethod,
         SettingInfo{"indirect-method", "lgh (the lighting grid hierarchy) or rtslc (stochastic lightcuts, the peer)"}

@@ -53,7 +53,7 @@ void LightTreePass::execute(const gl::Buffer& lights, size_t lightCount, GpuLigh
   gl::ensureSize(keys_, {passes::kLightTreeBuild, "Morton codes", "the input lights"}, lightCount * sizeof(GLuint));
   gl::ensureSize(values_, {passes::kLightTreeBuild, "light indices", "the input lights"}, lightCount * sizeof(GLuint));
 
-  lights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, 0, lightCount * sizeof(gpu::GpuLight));
   keys_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   values_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   out.bounds.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
@@ -81,7 +81,7 @@ void LightTreePass::execute(const gl::Buffer& lights, size_t lightCount, GpuLigh
     sort_.sort(keys_, values_, lightCount, 30);
   }
   // The sort bound its own buffers.
-  lights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, 0, lightCount * sizeof(gpu::GpuLight));
   keys_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   values_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   out.bounds.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);

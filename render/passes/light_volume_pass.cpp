@@ -129,7 +129,7 @@ LightPassDraws LightVolumePass::execute(const LightPassInputs& in, const LightPa
   uploadUniforms(draws, hierarchy, options, target.layout, L, m);
   bindTargets(options, target);
   if (options.pass.volumeCulling) prepareCulling(draws, hierarchy, options, target, L);
-  bindInputs(options, target, in.lights, m > 0 ? in.drawnTargets : nullptr);
+  bindInputs(options, target, in.lights, in.lightCount, m > 0 ? in.drawnTargets : nullptr);
   issueDraws(draws, options, m > 0);
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   gl::checkErrors("light pass");
@@ -239,7 +239,7 @@ void LightVolumePass::prepareCulling(const std::vector<Draw>& draws, const GpuHi
 // What the light volumes read and write besides the framebuffer; after the culling preparation, which
 // uses image units, textures and storage bindings of its own.
 void LightVolumePass::bindInputs(const LightPassOptions& options, const LightPassTarget& target,
-                                 const gl::Buffer& lights, const ShadowTargets* drawnTargets) {
+                                 const gl::Buffer& lights, size_t lightCount, const ShadowTargets* drawnTargets) {
   if (options.pass.overdraw) target.fragmentCounts->bindImage(LGH_IMAGE_FRAGMENT_COUNTS, GL_READ_WRITE);
   if (options.shadows.samples > 0) {
     target.shadowSlots->totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
@@ -247,7 +247,7 @@ void LightVolumePass::bindInputs(const LightPassOptions& options, const LightPas
     target.shadowSlots->unselectable.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
     if (drawnTargets) {  // counting the unselectable grid lights (the input lights fit one block)
       drawnTargets->targets.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS4);
-      lights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);
+      lights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5, 0, lightCount * sizeof(gpu::GpuLight));
     }
   }
   target.position.bindTexture(LGH_TEXTURE_SURFACE_POSITION);

@@ -111,7 +111,7 @@ class LightVolumePass {
   void prepareCulling(const std::vector<Draw>& draws, const GpuHierarchy& hierarchy, const LightPassOptions& options,
                       const LightPassTarget& target, int levels);
   void bindInputs(const LightPassOptions& options, const LightPassTarget& target, const gl::Buffer& lights,
-                  const ShadowTargets* drawnTargets);
+                  size_t lightCount, const ShadowTargets* drawnTargets);
   void issueDraws(const std::vector<Draw>& draws, const LightPassOptions& options, bool countUnselectable);
   const gl::Program& program(const Draw& draw, const LightPassOptions& options, bool countUnselectable);
 

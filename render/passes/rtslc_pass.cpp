@@ -50,7 +50,7 @@ void RtslcPass::bind(const RtslcInputs& in, const RtslcOptions& options, size_t 
   uniforms_.bind(0, LGH_UBO_PASS);
   in.scene.bindForCompute();
   in.gbuffer.bindForReading();
-  in.inputLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  in.inputLights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, 0, in.inputLightCount * sizeof(gpu::GpuLight));
   in.tree.nodes.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   in.tree.bounds.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   cuts_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);

@@ -20,7 +20,8 @@ namespace lgh {
 struct RtslcInputs {
   const SceneGpu& scene;
   const GBuffer& gbuffer;
-  const gl::Buffer& inputLights;
+  const gl::Buffer& inputLights;  // S0 (gpu::GpuLight), `inputLightCount` valid: bound in one storage block
+  size_t inputLightCount = 0;
   const GpuLightTree& tree;
 };
 

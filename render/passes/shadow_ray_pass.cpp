@@ -41,7 +41,7 @@ void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& o
 
   in.scene.bindForCompute();
   in.gbuffer.bindForReading();
-  in.inputLights.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  in.inputLights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, 0, in.inputLightCount * sizeof(gpu::GpuLight));
   in.slots.totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   in.slots.slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   in.slots.unselectable.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);

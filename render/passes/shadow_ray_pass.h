@@ -26,7 +26,8 @@ namespace lgh {
 struct ShadowRayInputs {
   const SceneGpu& scene;  // the BVH the rays traverse
   const GBuffer& gbuffer;
-  const gl::Buffer& inputLights;  // S0 (gpu::GpuLight)
+  const gl::Buffer& inputLights;  // S0 (gpu::GpuLight), `inputLightCount` valid: bound in one storage block
+  size_t inputLightCount = 0;
   const GpuHierarchy& hierarchy;
   const ShadowTargets& targets;              // this frame's drawn input lights per grid light (races 0: none)
   const ShadowSlots& slots;                  // the light pass's k selected lights per pixel, in `layout`

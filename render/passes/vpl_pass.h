@@ -32,22 +32,29 @@ class VplPass {
   // The table of all emitters as of the last tracePaths (it follows SceneGpu::lightsVersion()).
   const EmitterTable& emitters() const { return allEmitters_; }
   const EmitterTable& emissiveTriangles() const { return triangleEmitters_; }
+  // At most this many samples per batch (0: as many as one storage block holds), for tests of the batching.
+  void setBatchLimit(size_t samples) { batchLimit_ = samples; }
   static size_t pathCount(size_t budget, int bounces) { return (budget + size_t(bounces) - 1) / size_t(bounces); }
   static size_t maxVplCount(size_t budget, int bounces) { return pathCount(budget, bounces) * size_t(bounces); }
 
  private:
   void updateEmitters();  // rebuilds the table of all emitters after the punctual lights changed
-  // Runs vpl_generate.comp: record `slot` of `samples` x `bounces` slots goes to out[offset + slot].
-  void generate(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset, size_t samples,
-                int bounces, std::uint32_t seed);
+  // Runs vpl_generate.comp for samples [first, first + count) of `total`: record `slot` of the batch's
+  // count x `bounces` slots goes to out[offset + slot]. The batch's records must fit one storage block.
+  void generate(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset, size_t first,
+                size_t count, size_t total, int bounces, std::uint32_t seed);
   // Moves the written records of `slotCount` slots to out[offset...], in slot order; returns their count.
   size_t compact(size_t slotCount, gl::Buffer& out, size_t offset);
+  // Samples (paths, or emitter samples) per batch: their records, and the alignment a range binding of S0
+  // may need in front of them, fit one storage block (S0 itself may not: it is written by ranges).
+  size_t batchSamples(int bounces) const;
 
   const SceneGpu& scene_;
   EmitterTable allEmitters_, triangleEmitters_;
   gl::Buffer allEmitterBuffer_, triangleEmitterBuffer_;
   gl::Buffer pathSlots_, slotIndex_;  // the paths' fixed slots (GpuLight, flags 0: empty) and their compaction
   unsigned emittersLightsVersion_;    // SceneGpu::lightsVersion() that allEmitters_ was built from
+  size_t batchLimit_ = 0;
   gl::Program paths_, emitterSamples_, compactFlags_, compactWrite_;
   gl::PrefixSum prefixSum_{passes::kInputLights};
 };

@@ -246,7 +246,7 @@ TEST_F(LightcutsFrameTest, PerPixelCutsAreTheReferenceCuts) {
   const double minDistance = double(settings.rtslc.errorLimit) * glm::length(glm::dvec3(upper - lower));
 
   RtslcPass pass;
-  pass.selectCuts({gpu, renderer.gbuffer(), s0.lights, renderer.lightTree()},
+  pass.selectCuts({gpu, renderer.gbuffer(), s0.lights, s0.count, renderer.lightTree()},
                   {settings.rtslc, renderer.clampDistance(), 1u});
   const std::vector<GLuint> cuts =
       pass.cuts().download<GLuint>(size_t(settings.image.width) * settings.image.height * gpu::kMaxCutNodes);

@@ -62,6 +62,8 @@ TEST_F(RenderCliTest, EachHeadlessBackendRendersTheDefaultScene) {
     const RunResult r = runRender("--backend " + std::string(backend) + " --width 96 --height 72 -o " + quoted(out));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("triangles"), std::string::npos) << "summary missing:\n" << r.output;
+    for (const char* memory : {"GPU memory", "G-buffer", "LGH build", "peak"})
+      EXPECT_NE(r.output.find(memory), std::string::npos) << "memory by owner missing:\n" << r.output;
     int w = 0, h = 0;
     means[i] = meanValue(out, &w, &h);
     EXPECT_EQ(w, 96);
@@ -104,6 +106,9 @@ TEST_F(RenderCliTest, BadInputsFailWithClearMessages) {
       {"zero width", "--width 0 -o " + quoted(out), {"width"}},
       {"bad AOV", "--aov shadows=x.exr -o " + quoted(out), {"shadows", "direct"}},
       {"unknown option", "--frobnicate -o " + quoted(out), {"frobnicate"}},
+      {"past the memory limit",
+       "--width 160 --height 90 --gpu-memory-limit 20 --vpls 1000000 -o " + quoted(out),
+       {"GPU memory", "input lights: S0", "vpls", "32.0 MB", "gpu-memory-limit"}},
   };
   for (const BadInvocation& c : cases) {
     SCOPED_TRACE(c.name);

@@ -96,6 +96,26 @@ TEST_F(VplTest, OrderDependsOnlyOnTheSeed) {
   for (const gpu::GpuLight& l : a) ASSERT_NE(l.flags, 0u) << "an empty slot survived the compaction";
 }
 
+// Paths and emitter samples are generated in batches whose records fit one storage block (S0 itself may not:
+// it is written by ranges). Batches of 997 paths, at an unaligned offset, give S0 byte for byte as one batch.
+TEST_F(VplTest, BatchesGiveTheSameLightsAsOneBatch) {
+  const Scene scene = loadScene(sourceDir() / "data" / "cornell_box.gltf");
+  const SceneGpu gpu(scene);
+  VplPass pass(gpu);
+  const size_t budget = 3 * 20000, offset = 37;
+  auto trace = [&](size_t batchLimit) {
+    pass.setBatchLimit(batchLimit);
+    gl::Buffer out({"test", "out"}, (offset + VplPass::maxVplCount(budget, 3)) * sizeof(gpu::GpuLight));
+    out.clear();
+    const size_t count = pass.tracePaths(out, offset, budget, 3, 5);
+    return out.download<gpu::GpuLight>(count, offset);
+  };
+  const std::vector<gpu::GpuLight> one = trace(0), batched = trace(997);
+  ASSERT_GT(one.size(), budget / 2);
+  ASSERT_EQ(one.size(), batched.size());
+  EXPECT_EQ(std::memcmp(one.data(), batched.data(), one.size() * sizeof(gpu::GpuLight)), 0);
+}
+
 // Cornell box: the spot light's first-bounce flux against a CPU estimate of power x mean hit albedo,
 // sampled independently (same emission distribution, brute-force intersection in double).
 TEST_F(VplTest, CornellFirstBounceMatchesPowerTimesMeanHitAlbedo) {
