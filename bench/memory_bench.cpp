@@ -1,6 +1,7 @@
 #include "bench/memory_bench.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -46,7 +47,8 @@ struct Held {
   size_t lights = 0;  // by the lights: S0, the hierarchy's vertices, grid lights, the tree
   size_t fixed = 0;   // by nothing a setting changes (uniforms, the scene's own buffers)
   std::map<std::string, size_t> owners;
-  std::string dominant;  // the owner holding most
+  std::map<std::string, size_t> objects;  // by "owner: name" (objects of one name summed)
+  std::string dominant;                   // the owner holding most
 
   size_t owner(const char* name) const {
     const auto it = owners.find(name);
@@ -60,6 +62,7 @@ Held held() {
   h.peak = gl::memory().peakBytes();
   for (const gl::MemoryRegistry::Object& o : gl::memory().objects()) {
     h.owners[o.label.owner] += o.bytes;
+    h.objects[o.label.text()] += o.bytes;
     if (o.label.scaledBy.find(kImageSize) != std::string::npos)
       h.pixels += o.bytes;
     else if (!o.label.scaledBy.empty())
@@ -72,8 +75,8 @@ Held held() {
   return h;
 }
 
-// One frame with `s` from a clean peak; what it holds after it. A configuration the budget refuses
-// (gl::OutOfMemory) is reported, not fatal: its message is the measurement.
+// One frame with `s` from a clean peak; what it holds after it. A configuration refused before the driver
+// sees it (gl::OutOfMemory, or a structure's own limit) is reported, not fatal: its message is the measurement.
 struct Measured {
   Held held;
   size_t inputLights = 0;
@@ -82,17 +85,18 @@ struct Measured {
 
 Measured measure(RenderBench& bench, const RenderSettings& s) {
   Measured m;
+  // From what a frame without indirect light holds, so that the peak is this configuration's own build.
+  RenderSettings off = s;
+  off.indirect = false;
+  bench.renderer().render(off);
   gl::memory().resetPeak();
   try {
     const FrameStats stats = bench.renderer().render(s);
     if (s.accumulation.enabled) bench.renderer().render(s);  // the history made and swapped once
     m.inputLights = stats.lights.inputLights;
-  } catch (const gl::OutOfMemory& e) {
+  } catch (const std::runtime_error& e) {
     m.refused = e.what();
-    // The next configuration starts from nothing of this one.
-    RenderSettings off = s;
-    off.indirect = false;
-    bench.renderer().render(off);
+    bench.renderer().render(off);  // the next configuration starts from nothing of this one
   }
   m.held = held();
   return m;
@@ -134,14 +138,33 @@ class Report {
       headerDone_ = true;
     }
   }
-  void endTable() { headerDone_ = false; }
+  // A footnote printed below the table: returns its marker.
+  std::string note(const std::string& text) {
+    notes_.push_back(text);
+    return "(" + std::to_string(notes_.size()) + ")";
+  }
+  void endTable() {
+    headerDone_ = false;
+    if (!notes_.empty()) out_ << "\n";
+    for (size_t i = 0; i < notes_.size(); ++i) out_ << "(" << i + 1 << ") " << notes_[i] << "\n";
+    notes_.clear();
+  }
   void line(const std::string& text) { out_ << text << "\n"; }
+  // A property the tables must show (the bench's exit code says whether they all held).
+  void check(bool holds, const std::string& what) {
+    if (!holds) failures_.push_back(what);
+  }
+  const std::vector<std::string>& failures() const { return failures_; }
   std::string text() const { return out_.str(); }
 
  private:
   std::ostringstream out_;
   bool headerDone_ = false;
+  std::vector<std::string> notes_;
+  std::vector<std::string> failures_;
 };
+
+bool near(double a, double b, double tolerance) { return std::abs(a - b) <= tolerance * std::max(std::abs(b), 1e-30); }
 
 void lightsTable(RenderBench& bench, const MemoryBenchOptions& options, Report& r) {
   const RenderSettings& base = options.render.settings;
@@ -151,6 +174,8 @@ void lightsTable(RenderBench& bench, const MemoryBenchOptions& options, Report& 
             "lights over the input lights; B/px: what follows the image over its pixels)");
   r.row({"method", "VPL budget", "input lights", "all", "S0", "hierarchy / tree", "B / light", "B / px",
          "shadow rays B / px", "peak", "largest owner"});
+  Held largestLgh;                               // the last LGH row, broken down below
+  std::map<std::string, double> shadowPerPixel;  // the first row's, per method
   for (const char* method : {"lgh", "rtslc"})
     for (const double budget : options.vplCounts) {
       const size_t vpls = size_t(budget);
@@ -160,10 +185,17 @@ void lightsTable(RenderBench& bench, const MemoryBenchOptions& options, Report& 
       const Measured m = measure(bench, s);
       std::fprintf(stderr, "  %s %s VPLs done\n", method, shortCount(vpls).c_str());
       if (!m.refused.empty()) {
-        r.row({method, shortCount(vpls), "-", "refused: " + m.refused, "", "", "", "", "", "", ""});
+        r.row({method, shortCount(vpls), "-", "refused " + r.note(m.refused), "", "", "", "", "", "", ""});
         continue;
       }
       const Held& h = m.held;
+      if (std::string(method) == "lgh") largestLgh = h;
+      // The shadow sampling's memory per pixel is fixed: the same at every light count.
+      const double shadow = double(h.owner(passes::kShadowRays)) / pixels;
+      if (!shadowPerPixel.count(method)) shadowPerPixel[method] = shadow;
+      r.check(shadow == shadowPerPixel[method], std::string(method) + " at " + shortCount(vpls) +
+                                                    " VPLs: the shadow sampling holds " + perUnit(shadow, 1) +
+                                                    " B/px, not the first row's " + perUnit(shadowPerPixel[method], 1));
       r.row({method, shortCount(vpls), formatCount(m.inputLights), mb(h.total), mb(h.owner(passes::kInputLights)),
              mb(h.owner(structureOwner(s))), perUnit(double(h.lights), double(m.inputLights)),
              perUnit(double(h.pixels), pixels),
@@ -171,13 +203,23 @@ void lightsTable(RenderBench& bench, const MemoryBenchOptions& options, Report& 
              h.dominant});
     }
   r.endTable();
+  // What the lights' part is made of at the largest LGH row.
+  std::vector<std::pair<std::string, size_t>> objects(largestLgh.objects.begin(), largestLgh.objects.end());
+  std::sort(objects.begin(), objects.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  r.heading("The largest LGH row's objects, largest first (MB)");
+  r.row({"object", "MB", "share"});
+  for (size_t i = 0; i < std::min<size_t>(objects.size(), 10); ++i)
+    r.row({objects[i].first, mb(objects[i].second),
+           perUnit(100.0 * double(objects[i].second), double(largestLgh.total)) + "%"});
+  r.endTable();
 }
 
 void sizesTable(RenderBench& bench, const MemoryBenchOptions& options, Report& r) {
   r.heading("Against the image size (" + shortCount(options.fixedVpls) +
             " VPL budget, k = " + std::to_string(options.render.settings.shadows.samples) + ", 1x1)");
   r.row({"method", "image", "all MB", "image part MB", "B / px", "lights part MB", "fixed MB", "largest owner"});
-  for (const char* method : {"lgh", "rtslc"})
+  for (const char* method : {"lgh", "rtslc"}) {
+    double firstPerPixel = -1;
     for (const std::string& size : options.sizes) {
       RenderSettings s = options.render.settings;
       s.indirectMethod = method;
@@ -185,9 +227,13 @@ void sizesTable(RenderBench& bench, const MemoryBenchOptions& options, Report& r
       std::tie(s.image.width, s.image.height) = parseSize(size);
       const Measured m = measure(bench, s);
       const Held& h = m.held;
-      r.row({method, size, mb(h.total), mb(h.pixels), perUnit(double(h.pixels), double(s.image.width) * s.image.height),
-             mb(h.lights), mb(h.fixed), h.dominant});
+      const double perPixel = double(h.pixels) / (double(s.image.width) * s.image.height);
+      r.row({method, size, mb(h.total), mb(h.pixels), perUnit(perPixel, 1), mb(h.lights), mb(h.fixed), h.dominant});
+      if (firstPerPixel < 0) firstPerPixel = perPixel;
+      r.check(near(perPixel, firstPerPixel, 0.01), std::string(method) + " at " + size + ": " + perUnit(perPixel, 1) +
+                                                       " B/px, not the smallest image's " + perUnit(firstPerPixel, 1));
     }
+  }
   r.endTable();
 }
 
@@ -247,6 +293,7 @@ void extentTable(RenderBench& bench, const MemoryBenchOptions& options, Report& 
   r.heading("Against the scene's extent (the " + formatCount(lights.size()) +
             " input lights above, and the same lights with positions x1000; S1 + gather, L by the paper's rule)");
   r.row({"extent", "levels", "grid lights", "hierarchy MB", "B / input light"});
+  std::vector<size_t> bytesAt;
   for (float scale : {1.0f, 1000.0f}) {
     std::vector<gpu::GpuLight> scaled = lights;
     for (gpu::GpuLight& l : scaled) l.position *= scale;
@@ -256,10 +303,13 @@ void extentTable(RenderBench& bench, const MemoryBenchOptions& options, Report& 
     buildOptions.eMin = rendered.eMin * double(scale);
     pass.execute(buffer, scaled.size(), buildOptions, hierarchy);
     const size_t bytes = gl::memory().ownerBytes(passes::kLghBuild);
+    bytesAt.push_back(bytes);
     r.row({scale == 1.0f ? "x1" : "x1000", std::to_string(hierarchy.grid.levels), formatCount(hierarchy.gridLightCount),
            mb(bytes), perUnit(double(bytes), double(scaled.size()))});
   }
   r.endTable();
+  r.check(near(double(bytesAt[1]), double(bytesAt[0]), 0.01),
+          "the hierarchy x1000 in extent holds " + mb(bytesAt[1]) + " MB, not " + mb(bytesAt[0]));
 }
 
 }  // namespace
@@ -285,7 +335,9 @@ int runMemoryBench(const MemoryBenchOptions& options) {
     if (!out) throw std::runtime_error(options.markdownPath + ": cannot open for writing");
     out << report.text();
   }
-  return 0;
+  for (const std::string& failure : report.failures())
+    std::fprintf(stderr, "lgh-bench memory: FAILED: %s\n", failure.c_str());
+  return report.failures().empty() ? 0 : 1;
 }
 
 }  // namespace lgh::bench

@@ -285,7 +285,7 @@ void drawMemorySection() {
     ImGui::TableNextColumn();
     ImGui::Text("%s", gl::formatBytes(double(o.bytes)).c_str());
     ImGui::TableNextColumn();
-    ImGui::TextDisabled("%zu objects", o.objects);
+    ImGui::TextDisabled("%zu %s", o.objects, o.objects == 1 ? "object" : "objects");
   }
   ImGui::EndTable();
 }
@@ -316,7 +316,7 @@ PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
     drawStatus(state, info);
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) drawViewSection(state, info, requests);
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) drawCameraSection(state, requests);
-    if (ImGui::CollapsingHeader("GPU memory by owner")) drawMemorySection();
+    if (ImGui::CollapsingHeader("GPU memory by owner", ImGuiTreeNodeFlags_DefaultOpen)) drawMemorySection();
     if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen))
       drawLightsSection(state, *info.scene, requests);
     bool settingsChanged = false;
