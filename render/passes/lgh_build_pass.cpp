@@ -51,7 +51,9 @@ LghBuildPass::LghBuildPass(bool floatAtomicsAvailable)
       compactWrite_(gl::Program::compute("lgh_compact.comp")),
       scatterFixed_(gl::Program::compute("lgh_scatter.comp")),
       finalizeFixed_(gl::Program::compute("lgh_finalize.comp")),
-      gather_(gl::Program::compute("lgh_gather.comp")) {
+      gather_(gl::Program::compute("lgh_gather.comp")),
+      fitInsert_(gl::Program::compute("lgh_fit_table.comp", {{"LGH_FIT_INSERT", "1"}})),
+      fitIndex_(gl::Program::compute("lgh_fit_table.comp")) {
   if (floatAtomicsAvailable_) {
     scatterFloat_ = gl::Program::compute("lgh_scatter.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
     finalizeFloat_ = gl::Program::compute("lgh_finalize.comp", {{"LGH_FLOAT_ATOMICS", "1"}});
@@ -236,6 +238,28 @@ void LghBuildPass::gatherLevel(const LevelTable& children, const GridGeometry& g
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
+void LghBuildPass::fitLookup(LevelTable& table, const GridGeometry& grid, int level) {
+  const size_t capacity = nextPowerOfTwo(std::max<size_t>(1024, 2 * table.count));
+  if (capacity >= table.capacity || !table.compactKeys) return;
+  gl::Buffer keys({passes::kLghBuild, "vertex hash tables", kOccupied}, capacity * sizeof(GLuint));
+  gl::Buffer slotIndex({passes::kLghBuild, "slot indices", kOccupied}, capacity * sizeof(GLuint));
+  keys.clearUint(gpu::kEmptyKey);
+  counters_.clear();
+  setGridParams(grid, level, capacity, SIZE_MAX, 0.0);
+  table.compactKeys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  keys.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  slotIndex.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  counters_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS3);
+  for (const gl::Program* stage : {&fitInsert_, &fitIndex_}) {
+    stage->set("keyCount", GLuint(table.count));
+    stage->dispatch1D(table.count, kLocalSize);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
+  table.keys = std::move(keys);
+  table.slotIndex = std::move(slotIndex);
+  table.capacity = capacity;
+}
+
 size_t LghBuildPass::countFinestVertices(const gl::Buffer& lights, size_t lightCount, const GridGeometry& grid,
                                          size_t stopAt) {
   LevelTable trial;
@@ -306,10 +330,12 @@ void LghBuildPass::execute(const gl::Buffer& lights, size_t lightCount, const Lg
       scatterLevel(lights, lightCount, grid, level, bounds.largestValue, options.floatAtomics, tables[size_t(level)]);
     else
       gatherLevel(tables[size_t(level) - 1], grid, level, tables[size_t(level)]);
-    // A gathered level only reads the keys of the level right below it (the hash tables stay, for the
-    // shadow targets).
+    // A gathered level only reads the level right below it: that level's lookup is final now (it stays,
+    // for the shadow targets, fitted to its vertices), and the keys of the one below it go.
+    if (level >= 2) fitLookup(tables[size_t(level) - 1], grid, level - 1);
     if (level >= 2) tables[size_t(level) - 2].releaseCompactKeys();
   }
+  fitLookup(tables[size_t(levels)], grid, levels);
   gl::checkErrors("LGH build levels");
 
   {

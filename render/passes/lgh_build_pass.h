@@ -97,6 +97,9 @@ class LghBuildPass {
   };
 
   Bounds computeBounds(const gl::Buffer& lights, size_t lightCount);
+  // Moves a finished level's lookup into a table fitted to its occupied vertices (about 2 x count slots),
+  // when the build's table is larger (it needs the level's compact keys).
+  void fitLookup(LevelTable& table, const GridGeometry& grid, int level);
   int chooseLevelCount(const gl::Buffer& lights, size_t lightCount, const Bounds& bounds, double eMin);
   size_t countFinestVertices(const gl::Buffer& lights, size_t lightCount, const GridGeometry& grid, size_t stopAt);
   void insertKeys(const gl::Buffer& sources, size_t sourceCount, bool fromGridLights, LevelTable& table, int level,
@@ -116,6 +119,7 @@ class LghBuildPass {
   gl::Program bounds_, insertFromLights_, insertFromGridLights_, compactFlags_, compactWrite_, scatterFixed_,
       finalizeFixed_, gather_;
   gl::Program scatterFloat_, finalizeFloat_;  // only with GL_NV_shader_atomic_float
+  gl::Program fitInsert_, fitIndex_;
   gl::PrefixSum prefixSum_{passes::kLghBuild};
   gl::Buffer gridParams_, counters_, boundsResult_;
   gl::Buffer accPosition_, accIntensity_, accNormal_;

@@ -230,6 +230,50 @@ TEST_F(GLTest, HierarchyBytesDoNotFollowTheSceneExtent) {
   EXPECT_NEAR(double(large) / double(unit), 1.0, 0.01) << unit << " vs " << large << " bytes";
 }
 
+// A level's lookup is sized before its keys are known (S1's from the input lights); what the hierarchy
+// keeps is fitted to its occupied vertices: about 2 slots each, whatever the number of lights in them.
+TEST_F(GLTest, HierarchyLookupsFollowTheOccupiedVerticesNotTheLights) {
+  LghBuildPass pass(glContext().hasExtension("GL_NV_shader_atomic_float"));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  // 200,000 lights on 300 spots: many lights per occupied vertex.
+  std::vector<gpu::GpuLight> lights(200000);
+  for (size_t i = 0; i < lights.size(); ++i) {
+    std::mt19937 spot(std::uint32_t(i % 300));
+    std::uniform_real_distribution<float> v(0.0f, 10.0f);
+    lights[i] =
+        gpu::GpuLight{glm::vec3(v(spot), v(spot), v(spot)) + 1e-3f * glm::vec3(u(rng)), 0u, glm::vec3(1.0f), 0u};
+  }
+  const gl::Buffer buffer = gl::Buffer::fromVector({"test", "lights"}, lights);
+  GpuHierarchy hierarchy;
+  LghBuildOptions options;
+  options.levels = 6;
+  options.eMin = minTopCellFor(17.3);
+  pass.execute(buffer, lights.size(), options, hierarchy);
+  size_t slots = 0;
+  for (int level = 1; level <= hierarchy.grid.levels; ++level) {
+    const LghLevelLookup& lookup = hierarchy.lookups[size_t(level)];
+    const size_t count = hierarchy.levels[size_t(level)].count;
+    EXPECT_LE(lookup.capacity, std::max<size_t>(1024, 4 * count)) << "level " << level << ", " << count << " vertices";
+    EXPECT_EQ(lookup.keys.size(), lookup.capacity * sizeof(GLuint));
+    slots += lookup.capacity;
+    // Still a lookup of this level: every occupied slot names a different grid light of it.
+    const std::vector<GLuint> keys = lookup.keys.downloadAll<GLuint>(), index = lookup.slotIndex.downloadAll<GLuint>();
+    std::vector<bool> named(count, false);
+    size_t occupied = 0;
+    for (size_t slot = 0; slot < keys.size(); ++slot) {
+      if (keys[slot] == gpu::kEmptyKey) continue;
+      ++occupied;
+      ASSERT_LT(index[slot], count) << "level " << level << " slot " << slot;
+      EXPECT_FALSE(named[index[slot]]) << "level " << level << ": grid light " << index[slot] << " named twice";
+      named[index[slot]] = true;
+    }
+    EXPECT_EQ(occupied, count) << "level " << level;
+  }
+  // The grid lights and their lookups, nothing that follows the 200,000 lights.
+  EXPECT_EQ(ownerBytes(passes::kLghBuild), hierarchy.gridLightCount * sizeof(gpu::GpuGridLight) + 2 * slots * 4);
+}
+
 TEST_F(FrameMemoryTest, AConfigurationPastTheLimitIsRefusedNamingTheSetting) {
   SceneGpu gpu(scene);
   size_t held = 0;
