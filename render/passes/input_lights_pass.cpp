@@ -1,5 +1,7 @@
 #include "render/passes/input_lights_pass.h"
 
+#include <algorithm>
+#include <utility>
 #include <vector>
 
 #include "render/gl/debug.h"
@@ -34,6 +36,13 @@ void InputLightsPass::execute(const InputLightSettings& s, bool pointLightsToS0,
   out.vpls = vplBudget > 0 ? vplPass_.tracePaths(out.lights, vplOffset, vplBudget, s.bounces, seed ^ 0x9e3779b9u) : 0;
   // VPLs are appended where the GPU's atomic counter put them: compact, from vplOffset on.
   out.count = vplOffset + out.vpls;
+  // Paths that leave the scene deposit nothing (half of them in Sponza): S0 keeps the lights made, not
+  // the budget's room.
+  if (out.count < capacity) {
+    gl::Buffer made(out.lights.label(), std::max<size_t>(out.count, 1) * sizeof(gpu::GpuLight));
+    glCopyNamedBufferSubData(out.lights.id(), made.id(), 0, 0, GLsizeiptr(out.count * sizeof(gpu::GpuLight)));
+    out.lights = std::move(made);
+  }
   gl::checkErrors("input lights");
 }
 

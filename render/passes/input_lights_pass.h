@@ -17,7 +17,7 @@
 namespace lgh {
 
 struct InputLights {
-  gl::Buffer lights;  // gpu::GpuLight, `count` valid
+  gl::Buffer lights;  // gpu::GpuLight, `count` of them (at least one slot)
   size_t count = 0;
   size_t pointLights = 0, emitterSamples = 0, vpls = 0;  // how many of each, in buffer order
 };
