@@ -55,10 +55,12 @@ void selectCut(uvec2 block, ivec2 size) {
   // The root is split first whatever its bound (the authors' 1e27); a leaf never is.
   errors[0] = rtslc.leafCount > 1u ? uintBitsToFloat(0x7f800000u) : 0.0;
   if (representative(block, size, rng, s)) {
+    // The cut's distance floor: the authors' share of the lights' box, and at least the shading's clamp.
     float minDistance = rtslc.errorLimit * distance(vec3(fromOrderedBits(bounds.allLower[0]), fromOrderedBits(bounds.allLower[1]),
                                                          fromOrderedBits(bounds.allLower[2])),
                                                     vec3(fromOrderedBits(bounds.allUpper[0]), fromOrderedBits(bounds.allUpper[1]),
                                                          fromOrderedBits(bounds.allUpper[2])));
+    minDistance = max(minDistance, rtslc.clampDistance);
     while (count < rtslc.cutSize) {
       uint worst = 0u;
       for (uint i = 1u; i < count; ++i)
@@ -92,7 +94,8 @@ void sampleLights(ivec2 pixel) {
     Rng rng = makeRng(uint(pixel.y) * uint(frame.resolution.x) + uint(pixel.x), rtslc.frameSeed ^ 0x68e31da4u);
     for (uint i = first; i < last; ++i) {
       float probability;
-      uint leaf = descendToLeaf(cuts[base + i], rtslc.leafCount, s.position, s.normal, rng, probability);
+      uint leaf = descendToLeaf(cuts[base + i], rtslc.leafCount, s.position, s.normal, rtslc.clampDistance, rng,
+                                probability);
       // A dead branch: a zero sample. (A path's probability below the smallest normal float is drawn about
       // that rarely, and 1 / p of a denormal is infinite on llvmpipe, which flushes it.)
       if (leaf == 0u || !(probability >= 1.17549435e-38)) continue;

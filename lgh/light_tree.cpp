@@ -133,7 +133,7 @@ LightTree buildLightTree(const std::vector<Light>& lights) {
 }
 
 std::optional<double> firstChildProbability(const LightTree& tree, uint32_t node, const glm::dvec3& x,
-                                            const glm::dvec3& n) {
+                                            const glm::dvec3& n, double clampDistance) {
   requireNode(tree, node, true);
   const LightTreeNode &first = tree.nodes[2 * node], &second = tree.nodes[2 * node + 1];
   // A dark child is never taken; its box is empty, so nothing below may look at it.
@@ -149,19 +149,23 @@ std::optional<double> firstChildProbability(const LightTree& tree, uint32_t node
   if (cosineK == 0.0) return 1.0;
 
   // Eq. 1-2: child j's share of the importance I F / d², once with d the distance to the closest point
-  // of each box and once to the farthest, averaged. Multiplied out, a zero closest distance on one side
-  // gives that side the whole share instead of inf / inf; on both sides (x in both boxes) the term
-  // falls back to I F alone.
+  // of each box and once to the farthest, averaged. The shading clamps the distance at d_c
+  // (1 / max(d², d_c²)), so the importance does too: within d_c of both boxes the closest-point term is
+  // I F alone, not the whole share to the box that holds x. Without a floor (d_c = 0), multiplied out,
+  // a zero closest distance on one side gives that side the whole share instead of inf / inf; on both
+  // sides (x in both boxes) the term falls back to I F alone.
   const double aJ = intensityJ * cosineJ, aK = intensityK * cosineK;
-  const double minJ = minDistanceSq(boxJ, x), minK = minDistanceSq(boxK, x);
-  const double maxJ = maxDistanceSq(boxJ, x), maxK = maxDistanceSq(boxK, x);
+  const double floorSq = clampDistance * clampDistance;
+  const double minJ = std::max(minDistanceSq(boxJ, x), floorSq), minK = std::max(minDistanceSq(boxK, x), floorSq);
+  const double maxJ = std::max(maxDistanceSq(boxJ, x), floorSq), maxK = std::max(maxDistanceSq(boxK, x), floorSq);
   const double pMin = minJ == 0.0 && minK == 0.0 ? aJ / (aJ + aK) : minK * aJ / (minK * aJ + minJ * aK);
   // Both farthest distances are > 0: a box of farthest distance 0 is the point x, whose cosine bound is 0.
   const double pMax = maxK * aJ / (maxK * aJ + maxJ * aK);
   return (pMin + pMax) / 2.0;
 }
 
-std::vector<double> leafProbabilities(const LightTree& tree, uint32_t node, const glm::dvec3& x, const glm::dvec3& n) {
+std::vector<double> leafProbabilities(const LightTree& tree, uint32_t node, const glm::dvec3& x, const glm::dvec3& n,
+                                      double clampDistance) {
   requireNode(tree, node, false);
   // One level at a time: entry i of the level starting at `first` is node first + i, whose children
   // are entries 2i and 2i + 1 of the next level.
@@ -170,7 +174,7 @@ std::vector<double> leafProbabilities(const LightTree& tree, uint32_t node, cons
     std::vector<double> next(2 * probabilities.size(), 0.0);
     for (size_t i = 0; i < probabilities.size(); ++i) {
       if (probabilities[i] == 0.0) continue;  // never reached: a dark sibling or below a dead branch
-      const std::optional<double> p = firstChildProbability(tree, first + uint32_t(i), x, n);
+      const std::optional<double> p = firstChildProbability(tree, first + uint32_t(i), x, n, clampDistance);
       if (!p) continue;  // dead branch: its leaves keep probability 0
       next[2 * i] = probabilities[i] * *p;
       next[2 * i + 1] = probabilities[i] * (1.0 - *p);

@@ -55,18 +55,20 @@ uint32_t mortonCode(const glm::vec3& p, const glm::vec3& lower, const glm::vec3&
 LightTree buildLightTree(const std::vector<Light>& lights);
 
 // Probability of descending from internal `node` to its first child 2 node at the point x with unit
-// normal n (Eq. 1-2: the mean of the closest- and farthest-point importance ratios), or nullopt for a
-// dead branch (both children dark, or both behind the tangent plane of x).
+// normal n (Eq. 1-2: the mean of the closest- and farthest-point importance ratios, distances floored at
+// the shading's clamp distance d_c), or nullopt for a dead branch (both children dark, or both behind the
+// tangent plane of x).
 std::optional<double> firstChildProbability(const LightTree& tree, uint32_t node, const glm::dvec3& x,
-                                            const glm::dvec3& n);
+                                            const glm::dvec3& n, double clampDistance = 0.0);
 
 // Probability of reaching each leaf below `node` from it, leaf (node << depth) + i at index i: the product
 // of the child probabilities along the path, 0 below a dead branch. Sums to 1 unless a dead branch is met.
-std::vector<double> leafProbabilities(const LightTree& tree, uint32_t node, const glm::dvec3& x, const glm::dvec3& n);
+std::vector<double> leafProbabilities(const LightTree& tree, uint32_t node, const glm::dvec3& x, const glm::dvec3& n,
+                                      double clampDistance = 0.0);
 
 // Upper bound of `node`'s contribution at (x, n), the authors' errorFunction: 0 for a leaf, else
 // I F(B) / max(dMin²(B), minDistance²), with F the cosine bound of the node's box B. minDistance is
-// errorLimit times the diagonal of the lights' box.
+// errorLimit times the diagonal of the lights' box, and at least the shading's clamp distance d_c.
 double cutErrorBound(const LightTree& tree, uint32_t node, const glm::dvec3& x, const glm::dvec3& n,
                      double minDistance);
 

@@ -36,9 +36,10 @@ float firstOfTwo(float distanceSq0, float distanceSq1, float weighted0, float we
 }
 
 // The probability of descending from `node` to its first child 2 node at (x, n): the mean of Eq. 2's
-// closest-point and farthest-point probabilities, each from Eq. 1's weights I F / d^2. False for a dead
-// branch (neither child can light x); the sample then counts as zero (unbiased: Yuksel 2020, §5).
-bool firstChildProbability(uint node, vec3 x, vec3 n, out float probability) {
+// closest-point and farthest-point probabilities, each from Eq. 1's weights I F / max(d^2, d_c^2) (the
+// shading's clamp, so within d_c of both boxes the closest term is I F alone). False for a dead branch
+// (neither child can light x); the sample then counts as zero (unbiased: Yuksel 2020, §5).
+bool firstChildProbability(uint node, vec3 x, vec3 n, float clampDistance, out float probability) {
   GpuLightTreeNode c0 = nodes[2u * node], c1 = nodes[2u * node + 1u];
   probability = 0.0;
   if (c0.intensity == 0.0) return c1.intensity != 0.0;  // all of it to the second child, or none
@@ -49,11 +50,13 @@ bool firstChildProbability(uint node, vec3 x, vec3 n, out float probability) {
   probability = f1 == 0.0 ? 1.0 : 0.0;
   if (f0 == 0.0 || f1 == 0.0) return true;
   float a0 = c0.intensity * f0, a1 = c1.intensity * f1;
-  float min0 = closestDistanceSq(x, c0.boundMin, c0.boundMax), min1 = closestDistanceSq(x, c1.boundMin, c1.boundMax);
-  // Both boxes hold x: the closest-point term has no distances to compare.
+  float floorSq = clampDistance * clampDistance;
+  float min0 = max(closestDistanceSq(x, c0.boundMin, c0.boundMax), floorSq);
+  float min1 = max(closestDistanceSq(x, c1.boundMin, c1.boundMax), floorSq);
+  // Both boxes hold x (without a floor): the closest-point term has no distances to compare.
   float closest = min0 == 0.0 && min1 == 0.0 ? a0 / (a0 + a1) : firstOfTwo(min0, min1, a0, a1);
-  float farthest = firstOfTwo(farthestDistanceSq(x, c0.boundMin, c0.boundMax),
-                              farthestDistanceSq(x, c1.boundMin, c1.boundMax), a0, a1);
+  float farthest = firstOfTwo(max(farthestDistanceSq(x, c0.boundMin, c0.boundMax), floorSq),
+                              max(farthestDistanceSq(x, c1.boundMin, c1.boundMax), floorSq), a0, a1);
   // The uniforms are multiples of 2^-24 (nextFloat): a child whose probability is below that would still be
   // drawn 2^-24 of the time and weighed by 1 / p, an infinite sample (seen: 816 NaN pixels in a filtered
   // Sponza frame), and one that rounds to 0 would never be drawn although it can light x. So the
@@ -79,11 +82,12 @@ float cutErrorBound(uint node, uint leafCount, vec3 x, vec3 n, float minDistance
 // dead branch. A fresh uniform per level (the authors rescale one uniform down the tree, which spends its
 // mantissa over 17-21 levels): the same distribution. A leaf may be dark (a padding leaf under a lit node
 // is never drawn: its probability is 0).
-uint descendToLeaf(uint node, uint leafCount, vec3 x, vec3 n, inout Rng rng, out float probability) {
+uint descendToLeaf(uint node, uint leafCount, vec3 x, vec3 n, float clampDistance, inout Rng rng,
+                   out float probability) {
   probability = 1.0;
   while (node < leafCount) {
     float first;
-    if (!firstChildProbability(node, x, n, first)) return 0u;
+    if (!firstChildProbability(node, x, n, clampDistance, first)) return 0u;
     bool takeFirst = nextFloat(rng) < first;
     probability *= takeFirst ? first : 1.0 - first;
     node = 2u * node + (takeFirst ? 0u : 1u);

@@ -15,12 +15,13 @@ layout(std430, binding = LGH_BINDING_PASS2) writeonly buffer Probabilities { flo
 
 uniform uint count, startNode, leafCount, seed;
 uniform vec3 x, n;
+uniform float clampDistance;
 
 void main() {
   uint i = lghGlobalIndex();
   if (i >= count) return;
   Rng rng = makeRng(i, seed);
   float probability;
-  leaves[i] = descendToLeaf(startNode, leafCount, x, n, rng, probability);
+  leaves[i] = descendToLeaf(startNode, leafCount, x, n, clampDistance, rng, probability);
   probabilities[i] = probability;
 }

@@ -307,6 +307,23 @@ TEST(LightTree, FirstChildProbabilityOfTwoBoxesByHand) {
   EXPECT_NEAR(*p, (pMin + pMax) / 2.0, 1e-14);
 }
 
+// The shading clamps the distance at d_c (1 / max(d^2, d_c^2)), and the importance floors it alike. The
+// boxes above with d_c^2 = 4: A's closest distance^2 2 becomes 4, B's 5 stays; the farthest (13, 26) stay.
+// With d_c^2 = 30 every distance is floored: both terms are the I F ratio.
+TEST(LightTree, FirstChildProbabilityFloorsTheDistancesAtTheClampDistance) {
+  const LightTree tree = buildLightTree(twoClusters());
+  const double iA = tree.nodes[2].intensity, iB = tree.nodes[3].intensity;
+  const double aA = iA * 2.0 / std::sqrt(5.0), aB = iB * 3.0 / std::sqrt(13.0);
+  const double pMin = (aA / 4.0) / (aA / 4.0 + aB / 5.0), pMax = (aA / 13.0) / (aA / 13.0 + aB / 26.0);
+  const std::optional<double> p = firstChildProbability(tree, 1, glm::dvec3(0.0), glm::dvec3(0, 0, 1), 2.0);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_NEAR(*p, (pMin + pMax) / 2.0, 1e-14);
+  const std::optional<double> flat =
+      firstChildProbability(tree, 1, glm::dvec3(0.0), glm::dvec3(0, 0, 1), std::sqrt(30.0));
+  ASSERT_TRUE(flat.has_value());
+  EXPECT_NEAR(*flat, aA / (aA + aB), 1e-14);
+}
+
 TEST(LightTree, FirstChildProbabilityWithTheReceiverInsideBothBoxes) {
   // Lights 0-3 share Morton cell 0 of the box [0, 1024]^3 and keep input order: node 4 = {0, 1} with box
   // [0, 0.25]^3, node 5 = {2, 3} with box [0, 0.5] x [0, 0.25]^2. Light 4 (dark) only spans the Morton box.

@@ -45,7 +45,8 @@ std::vector<Light> clusteredLights(size_t count, uint32_t seed) {
 }
 
 // From the root and from an inner node, 400,000 descents at a shading point: the leaves reached follow
-// the CPU reference's leaf probabilities, and each descent's probability is the reference's for its leaf.
+// the CPU reference's leaf probabilities, and each descent's probability is the reference's for its leaf;
+// without a distance floor and with the shading's clamp distance as one (0.4: within it of many boxes).
 TEST_F(LightcutsTest, DescentsFollowTheReferenceProbabilities) {
   const std::vector<gpu::GpuLight> gpuLights = toGpuLights(clusteredLights(300, 5));
   const LightTree cpu = buildLightTree(fromGpuLights(gpuLights));
@@ -58,9 +59,10 @@ TEST_F(LightcutsTest, DescentsFollowTheReferenceProbabilities) {
   constexpr size_t kDescents = 400000;
   gl::Buffer leaves({"test", "leaves"}, kDescents * sizeof(GLuint)),
       probabilities({"test", "probabilities"}, kDescents * sizeof(float));
-  for (uint32_t start : {1u, 5u}) {
-    SCOPED_TRACE("from node " + std::to_string(start));
-    const std::vector<double> expected = leafProbabilities(cpu, start, glm::dvec3(x), glm::dvec3(n));
+  for (auto [start, clampDistance] : {std::pair{1u, 0.0f}, {5u, 0.0f}, {1u, 0.4f}, {5u, 0.4f}}) {
+    SCOPED_TRACE("from node " + std::to_string(start) + ", clamp distance " + std::to_string(clampDistance));
+    const std::vector<double> expected =
+        leafProbabilities(cpu, start, glm::dvec3(x), glm::dvec3(n), double(clampDistance));
     uint32_t depth = 0;
     while ((size_t(1) << depth) < expected.size()) ++depth;
     const uint32_t firstLeaf = start << depth;
@@ -73,6 +75,7 @@ TEST_F(LightcutsTest, DescentsFollowTheReferenceProbabilities) {
     descent.set("seed", GLuint(17 + start));
     descent.set("x", x);
     descent.set("n", n);
+    descent.set("clampDistance", clampDistance);
     descent.dispatch1D(kDescents, 64);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const std::vector<GLuint> reached = leaves.download<GLuint>(kDescents);
@@ -243,7 +246,9 @@ TEST_F(LightcutsFrameTest, PerPixelCutsAreTheReferenceCuts) {
   const LightTree cpu = buildLightTree(lights);
   glm::vec3 lower(lights[0].position), upper(lights[0].position);
   for (const Light& l : lights) lower = glm::min(lower, l.position), upper = glm::max(upper, l.position);
-  const double minDistance = double(settings.rtslc.errorLimit) * glm::length(glm::dvec3(upper - lower));
+  // The authors' share of the lights' box, floored at the shading's clamp distance as rtslc.comp does.
+  const double minDistance = std::max(double(settings.rtslc.errorLimit) * glm::length(glm::dvec3(upper - lower)),
+                                      double(renderer.clampDistance()));
 
   RtslcPass pass;
   pass.selectCuts({gpu, renderer.gbuffer(), s0.lights, s0.count, renderer.lightTree()},
