@@ -14,16 +14,6 @@
 namespace lgh {
 namespace {
 
-struct AovName {
-  Aov aov;
-  const char* name;
-};
-constexpr AovName kAovNames[] = {
-    {Aov::Final, "final"},           {Aov::Direct, "direct"},     {Aov::Indirect, "indirect"},
-    {Aov::Irradiance, "irradiance"}, {Aov::Ratio, "ratio"},       {Aov::Visibility, "visibility"},
-    {Aov::Overdraw, "overdraw"},     {Aov::Emission, "emission"}, {Aov::Albedo, "albedo"},
-    {Aov::Normal, "normal"},         {Aov::Position, "position"}};
-
 // Default clamp distance d_c as a fraction of the scene's diagonal. 1e-3 left bright specks along
 // creases (VPLs and S1 centres a millimetre from the next wall in the Cornell box); 1e-2 removes
 // them and changes Sponza's image imperceptibly (0.4 m there).
@@ -46,25 +36,6 @@ bool sameView(const CameraView& a, const CameraView& b) {
 }
 
 }  // namespace
-
-Aov parseAov(const std::string& name) {
-  for (const auto& a : kAovNames)
-    if (name == a.name) return a.aov;
-  std::string list;
-  for (const auto& a : kAovNames) list += (list.empty() ? "" : ", ") + std::string(a.name);
-  throw std::invalid_argument("unknown AOV '" + name + "' (choose one of: " + list + ")");
-}
-
-std::vector<std::string> aovNames() {
-  std::vector<std::string> names;
-  for (const auto& a : kAovNames) names.emplace_back(a.name);
-  return names;
-}
-
-bool isDataAov(Aov aov) {
-  return aov == Aov::Overdraw || aov == Aov::Ratio || aov == Aov::Visibility || aov == Aov::Albedo ||
-         aov == Aov::Normal || aov == Aov::Position;
-}
 
 double FrameStats::totalMs() const {
   double total = 0;

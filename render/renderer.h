@@ -7,11 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "render/aov.h"
 #include "render/camera_view.h"
 #include "render/gl/buffer.h"
 #include "render/gl/profiler.h"
 #include "render/image_io.h"
 #include "render/light_builds.h"
+#include "render/pass_names.h"
 #include "render/passes/accumulation_pass.h"
 #include "render/passes/composite_pass.h"
 #include "render/passes/direct_light_pass.h"
@@ -22,7 +24,6 @@
 #include "render/passes/lgh_build_pass.h"
 #include "render/passes/light_tree_pass.h"
 #include "render/passes/light_volume_pass.h"
-#include "render/passes/pass_names.h"
 #include "render/passes/rtslc_pass.h"
 #include "render/passes/shadow_filter_pass.h"
 #include "render/passes/shadow_ray_pass.h"
@@ -30,20 +31,6 @@
 #include "render/settings.h"
 
 namespace lgh {
-
-// Images a frame can hand back (AOVs).
-//   indirect    radiance through the LGH, unshadowed (albedo / pi x irradiance); with the lightcuts, shadowed
-//               (ratio, visibility and overdraw are the LGH's: with the lightcuts they hold nothing new)
-//   overdraw    heat map of fragments rasterized per pixel in the light pass (needs settings.overdraw)
-//   irradiance  the light pass's irradiance (before albedo), accumulated over the frames the history holds;
-//               with the lightcuts their shadowed irradiance, accumulated and filtered
-//   ratio       unfiltered visibility ratio of the indirect light (mean of the k shadow rays, accumulated)
-//   visibility  the filtered ratio that multiplies the indirect light
-enum class Aov { Final, Direct, Indirect, Irradiance, Ratio, Visibility, Overdraw, Emission, Albedo, Normal, Position };
-Aov parseAov(const std::string& name);
-std::vector<std::string> aovNames();
-// AOVs that hold data rather than radiance: written without exposure or tone curve.
-bool isDataAov(Aov aov);
 
 // What the LGH part of the frame drew, in device-independent counts.
 struct LightStats {

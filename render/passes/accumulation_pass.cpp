@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "render/gl/debug.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "shared/accumulation_types.h"
 #include "shared/bindings.h"
 

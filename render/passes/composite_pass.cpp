@@ -1,7 +1,7 @@
 #include "render/passes/composite_pass.h"
 
 #include "render/gl/debug.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "shared/bindings.h"
 
 namespace lgh {

@@ -9,10 +9,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "render/aov.h"
 #include "render/gl/program.h"
 #include "render/gl/texture.h"
 #include "render/image_io.h"
-#include "render/renderer.h"
 
 namespace lgh {
 

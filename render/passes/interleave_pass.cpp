@@ -4,7 +4,7 @@
 #include <string>
 
 #include "render/gl/debug.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/light_pass_types.h"
 

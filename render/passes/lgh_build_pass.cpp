@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "render/gl/debug.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/octahedral.h"
 

@@ -23,7 +23,7 @@
 #include "render/gl/prefix_sum.h"
 #include "render/gl/profiler.h"
 #include "render/gl/program.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "shared/lgh_types.h"
 
 namespace lgh {

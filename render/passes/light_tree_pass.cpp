@@ -5,7 +5,7 @@
 #include <string>
 
 #include "render/gl/debug.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/lgh_types.h"
 

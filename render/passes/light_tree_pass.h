@@ -15,7 +15,7 @@
 #include "render/gl/profiler.h"
 #include "render/gl/program.h"
 #include "render/gl/radix_sort.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "shared/light_tree_types.h"
 
 namespace lgh {

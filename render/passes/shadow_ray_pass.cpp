@@ -4,7 +4,7 @@
 #include <vector>
 
 #include "render/gl/debug.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/shadow_ray_types.h"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "render/gl/debug.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/light_pass_types.h"
 

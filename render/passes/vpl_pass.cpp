@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "render/gl/debug.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "shared/bindings.h"
 #include "shared/lgh_types.h"
 

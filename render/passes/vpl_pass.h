@@ -12,7 +12,7 @@
 #include "render/gl/buffer.h"
 #include "render/gl/prefix_sum.h"
 #include "render/gl/program.h"
-#include "render/passes/pass_names.h"
+#include "render/pass_names.h"
 #include "render/scene/emitters.h"
 #include "render/scene/scene_gpu.h"
 
