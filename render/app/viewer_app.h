@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "render/app/display_pass.h"
+#include "render/app/grid_points_pass.h"
 #include "render/app/viewer_camera.h"
 #include "render/app/viewer_panel.h"
 #include "render/app/viewer_script.h"
 #include "render/gl/context.h"
-#include "render/passes/display_pass.h"
-#include "render/passes/grid_points_pass.h"
 #include "render/renderer.h"
 #include "render/scene/scene_gpu.h"
 

@@ -6,9 +6,9 @@
 //        frame's camera; the level and the points' size
 //   out: points blended into a DisplayImage
 
+#include "render/app/display_pass.h"
 #include "render/camera_view.h"
 #include "render/gl/program.h"
-#include "render/passes/display_pass.h"
 #include "render/passes/lgh_build_pass.h"
 
 namespace lgh {

@@ -1,4 +1,4 @@
-#include "render/passes/display_pass.h"
+#include "render/app/display_pass.h"
 
 #include <algorithm>
 #include <stdexcept>

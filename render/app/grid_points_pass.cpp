@@ -1,4 +1,4 @@
-#include "render/passes/grid_points_pass.h"
+#include "render/app/grid_points_pass.h"
 
 #include <algorithm>
 #include <cmath>
