@@ -438,8 +438,11 @@ const gl::Texture2D& Renderer::texture(Aov aov) const {
   if (t) return t;
   const bool counts = aov == Aov::Overdraw;
   const float value = aov == Aov::Ratio || aov == Aov::Visibility ? 1.0f : 0.0f;
-  neutralAov_ = gl::Texture2D({passes::kComposite, "neutral AOV", kImageSize}, settings_.image.width,
-                              settings_.image.height, counts ? GL_R32UI : GL_RGBA32F);
+  // Made once per configuration (allocateTargets frees it), refilled per call: the viewer asks every frame.
+  const GLenum format = counts ? GL_R32UI : GL_RGBA32F;
+  if (!neutralAov_ || neutralAov_.format() != format)
+    neutralAov_ = gl::Texture2D({passes::kComposite, "neutral AOV", kImageSize}, settings_.image.width,
+                                settings_.image.height, format);
   if (counts)
     neutralAov_.clearUint(0);
   else

@@ -53,23 +53,27 @@ void Buffer::checkStorageBlock(GLenum target, size_t bytes) const {
   if (target != GL_SHADER_STORAGE_BUFFER || bytes <= kMinStorageBlockBytes) return;
   const size_t limit = maxStorageBlockBytes();
   if (limit > 0 && bytes > limit)
-    throw OutOfMemory("GPU memory: " + label_.text() + " binds " + formatBytes(double(bytes)) +
-                      (label_.scaledBy.empty() ? "" : " (its size follows " + label_.scaledBy + ")") +
+    throw OutOfMemory("GPU memory: " + label_.text() + " binds " + formatBytes(double(bytes)) + label_.sizeNote() +
                       " as one shader storage block, more than the " + formatBytes(double(limit)) +
                       " this device allows (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)");
 }
 
-bool ensureSize(Buffer& buffer, const Label& label, size_t bytes, GLbitfield flags) {
-  if (buffer && buffer.size() >= bytes) return false;
+namespace {
+void reallocate(Buffer& buffer, const Label& label, size_t bytes, GLbitfield flags) {
   buffer = Buffer();  // the old storage goes before the new is counted against the budget
   buffer = Buffer(label, bytes, nullptr, flags);
+}
+}  // namespace
+
+bool ensureSize(Buffer& buffer, const Label& label, size_t bytes, GLbitfield flags) {
+  if (buffer && buffer.size() >= bytes) return false;
+  reallocate(buffer, label, bytes, flags);
   return true;
 }
 
 bool fitSize(Buffer& buffer, const Label& label, size_t bytes, GLbitfield flags) {
   if (buffer && buffer.size() == bytes) return false;
-  buffer = Buffer();
-  buffer = Buffer(label, bytes, nullptr, flags);
+  reallocate(buffer, label, bytes, flags);
   return true;
 }
 

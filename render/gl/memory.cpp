@@ -50,8 +50,7 @@ std::vector<MemoryRegistry::Object> MemoryRegistry::objects() const {
 }
 
 void MemoryRegistry::check(const Label& label, size_t bytes) const {
-  const std::string what = label.text() + " needs " + formatBytes(double(bytes)) +
-                           (label.scaledBy.empty() ? "" : " (its size follows " + label.scaledBy + ")");
+  const std::string what = label.text() + " needs " + formatBytes(double(bytes)) + label.sizeNote();
   if (limit_ > 0 && live_ + bytes > limit_)
     throw OutOfMemory("GPU memory: " + what + ", but " + formatBytes(double(live_)) + " of the limit of " +
                       formatBytes(double(limit_)) + " (gpu-memory-limit) are in use");

@@ -26,6 +26,8 @@ struct Label {
   std::string name;      // what it is in its owner
   std::string scaledBy;  // the settings its size follows, for error messages ("" when fixed)
   std::string text() const { return owner + ": " + name; }
+  // " (its size follows ...)" for error messages, or nothing for a fixed size.
+  std::string sizeNote() const { return scaledBy.empty() ? "" : " (its size follows " + scaledBy + ")"; }
 };
 
 struct OutOfMemory : std::runtime_error {

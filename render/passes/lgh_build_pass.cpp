@@ -332,8 +332,10 @@ void LghBuildPass::execute(const gl::Buffer& lights, size_t lightCount, const Lg
       gatherLevel(tables[size_t(level) - 1], grid, level, tables[size_t(level)]);
     // A gathered level only reads the level right below it: that level's lookup is final now (it stays,
     // for the shadow targets, fitted to its vertices), and the keys of the one below it go.
-    if (level >= 2) fitLookup(tables[size_t(level) - 1], grid, level - 1);
-    if (level >= 2) tables[size_t(level) - 2].releaseCompactKeys();
+    if (level >= 2) {
+      fitLookup(tables[size_t(level) - 1], grid, level - 1);
+      tables[size_t(level) - 2].releaseCompactKeys();
+    }
   }
   fitLookup(tables[size_t(levels)], grid, levels);
   gl::checkErrors("LGH build levels");
