@@ -42,6 +42,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
+#include "shared/atrous_taps.glsl"
 #include "shared/interleave_window.glsl"
 #include "shared/shadow_filter_types.h"
 
@@ -136,26 +137,21 @@ void main() {
     imageStore(signalOut, pixel, centre);
     return;
   }
-  const float kernel[3] = float[](3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
-  float footprint =
-      max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30) * float(atrous.stepSize);
+  float footprint = atrousFootprint(s, atrous.stepSize);
   float centreRatio = centre.g > kNoWeight ? centre.r / centre.g : raw.r;
   float sigma = atrous.ratioSigma * pow(frames, -atrous.sigmaFade);
   vec3 sum = vec3(0.0);
   float weightSum = 0.0, varianceSum = 0.0;
   for (int dy = -2; dy <= 2; ++dy) {
     for (int dx = -2; dx <= 2; ++dx) {
-      ivec2 q = pixel + ivec2(dx, dy) * atrous.stepSize;
-      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-      vec4 qPosition = texelFetch(gPosition, q, 0);
-      if (qPosition.w == 0.0) continue;
+      ivec2 q;
+      vec4 qPosition;
+      if (!atrousTap(pixel, ivec2(dx, dy), atrous.stepSize, q, qPosition)) continue;
       vec4 v = texelFetch(signalIn, q, 0);
       float qRatio = v.g > kNoWeight ? v.r / v.g : centreRatio;  // a tap without a ratio stops nothing
-      float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * atrous.planeSigma);
       float dr = atrous.stepSize > 1 ? (qRatio - centreRatio) / sigma : 0.0;
-      float w = kernel[abs(dx)] * kernel[abs(dy)] *
-                pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), atrous.normalPower) *
-                exp(-0.5 * (plane * plane + dr * dr));
+      float w = atrousTapWeight(s, ivec2(dx, dy), q, qPosition, footprint, atrous.normalPower, atrous.planeSigma,
+                                dr * dr);
       sum += w * v.rgb;
       varianceSum += w * w * v.a;
       weightSum += w;
