@@ -5,7 +5,8 @@
 // values to the history's sums:
 //   irradiance sum  rgb: sum of E_f (unresolved: with n x n interleaving the tile's n^2-scaled value)
 //                   a:   N, frames in the history
-//   ratio sum       r: sum of T_f r_f, g: sum of T_f, b: sum of var(T_f), a: unused
+//   ratio sum       r: sum of T_f r_f, g: sum of T_f, b: sum of var(T_f), a: unused (unshadowed: r, g the sum
+//                   of the luminances l_f, b of their squares, and out the mean's variance)
 //                   (T_f = lum(E_f) D_f: the frame's ratio weight, what its shadow samples estimate the
 //                   input lights add, D_f their mean weight; var(T_f) its variance, the frames independent)
 //   heaviest frame  r: T_h, g: C_h of the frame with the largest D_f = T_f / C_f (C_f = lum(E_f), the
@@ -30,7 +31,7 @@
 // estimator's, sum (T_f - D C_f)^2 / (N (N - 1)), also held what the tiles' lights add, which the rotated
 // dealing stratifies, and took back half the correction's gain at 16 frames (Sponza 10K 4x4 k = 16 raw:
 // 0.086 -> 0.121, the heaviest frame alone 0.088; uncorrected 0.151).
-// With N = 1 the outputs are this frame's values bit for bit.
+// With N = 1 the outputs are this frame's values bit for bit (unshadowed, the ratio image takes the moments).
 // Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
 // irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, over
 // the interleaving window for N frames (shared/interleave_window.glsl: n x n for N < n, a column of n
@@ -142,7 +143,7 @@ void main() {
   float l = max(luminance(e), 0.0);
   bool shadowed = accum.shadowSamples != 0u;
   float r = shadowed ? rawRatio.r : 1.0, weight = shadowed ? max(rawRatio.b, 0.0) : l;
-  float variance = shadowed ? max(rawRatio.g, 0.0) : 0.0;
+  float variance = shadowed ? max(rawRatio.g, 0.0) : l * l;  // unshadowed: the luminance's second moment
   irradianceSum += vec4(e, 1.0);
   ratioSum += vec4(weight * r, weight, variance, 0.0);
   if (l > 0.0 && (heaviest.g <= 0.0 || weight * heaviest.g > heaviest.r * l)) heaviest = vec4(weight, l, 0.0, 0.0);
@@ -150,6 +151,13 @@ void main() {
   imageStore(ratioSumOut, pixel, ratioSum);
   imageStore(heaviestOut, pixel, heaviest);
   float frames = irradianceSum.a;
+  if (!shadowed) {
+    // The luminance's temporal moments, for a filter guided by the estimate's variance (the lightcuts'):
+    // the accumulated mean's variance, (sum l^2 - (sum l)^2 / N) / (N (N - 1)), in green (0 while N = 1),
+    // N in alpha.
+    float spread = max(ratioSum.b - ratioSum.g * ratioSum.g / frames, 0.0);
+    imageStore(ratio, pixel, vec4(1.0, frames > 1.5 ? spread / (frames * (frames - 1.0)) : 0.0, ratioSum.g / frames, frames));
+  }
   if (frames < 1.5) return;  // this frame only: its values stay as they are
   // Before n^2 frames the sum lacks some of the lights' tiles: stage 1 resolves it.
   if (frames >= float(accum.tilesPerAxis * accum.tilesPerAxis))

@@ -280,9 +280,12 @@ FrameStats Renderer::render(const CameraView& view) {
       });
     // The shadow filter's a-trous passes over the irradiance itself (less of it over more frames).
     timed(passes::kIrradianceFilter, [&] {
-      const float fade = accumulating() ? settings_.accumulation.filterFade : 0.0f;
-      irradianceFilterPass_.execute(gbuffer_, irradiance_, {settings_.filter, fade, stats.accumulatedFrames},
-                                    filteredIrradiance_);
+      const bool moments = accumulating();
+      irradianceFilterPass_.execute(
+          gbuffer_, irradiance_,
+          {settings_.filter.passes, settings_.rtslc, moments ? settings_.accumulation.filterFade : 0.0f,
+           moments ? &rawRatio_ : nullptr},
+          filteredIrradiance_);
     });
     stats.lights = lightStats({});
   } else if (settings_.indirect) {

@@ -103,6 +103,13 @@ struct RtslcSettings {
   int blockSize = 8;          // B: pixels per side of the blocks that share a cut (1: per-pixel cuts)
   int interleave = 1;         // m: an m x m group of pixels splits each cut of n m^2 nodes (1, 2, 4)
   float errorLimit = 0.001f;  // the cut's distance floor, as a share of the lights' box diagonal
+  // The denoiser (IrradianceFilterPass; its passes are ShadowFilterSettings::passes), tuned on the lightcuts
+  // (docs/measurements.md, "The lightcuts' denoiser"): SVGF's luminance stop sigma_l in standard deviations,
+  // and the a-trous normal power and plane sigma (the shadow filter's normal power 64 cut the lightcuts'
+  // blur on normal-mapped surfaces to half of what their noise needs).
+  float filterSigma = 16.0f;
+  float filterNormalPower = 4.0f;
+  float filterPlaneSigma = 1.0f;
 };
 
 struct RenderSettings {
@@ -274,6 +281,16 @@ void visitSettings(Settings& s, Visitor&& visit) {
                     1, 4});
   visit(rtslc.errorLimit,
         SettingInfo{"rtslc-error-limit", "lightcuts: the cut's distance floor, share of the lights' extent", 0, 1});
+  visit(rtslc.filterSigma, SettingInfo{"rtslc-filter-sigma",
+                                       "lightcuts' denoiser: luminance stop in standard deviations (SVGF)", 0.01, 1000}
+                               .keepingHistory());
+  visit(rtslc.filterNormalPower,
+        SettingInfo{"rtslc-filter-normal-power", "lightcuts' denoiser: normal weight max(0, n.n')^p", 0, 1024}
+            .keepingHistory());
+  visit(rtslc.filterPlaneSigma,
+        SettingInfo{"rtslc-filter-plane-sigma", "lightcuts' denoiser: plane-distance sigma, in pixel footprints", 0.01,
+                    1000}
+            .keepingHistory());
   auto& accumulation = s.accumulation;
   visit(accumulation.enabled,
         SettingInfo{"accumulate", "average frames while the view is still (on in the viewer and with --frames > 1)"}

@@ -23,36 +23,35 @@ void IrradianceFilterPass::release() {
 
 void IrradianceFilterPass::execute(const GBuffer& gbuffer, const gl::Texture2D& irradiance,
                                    const IrradianceFilterOptions& options, gl::Texture2D& filtered) {
-  const ShadowFilterSettings& filter = options.filter;
-  if (filter.passes <= 0) {
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);  // the copy reads what image stores wrote
-    glCopyImageSubData(irradiance.id(), GL_TEXTURE_2D, 0, 0, 0, 0, filtered.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
-                       gbuffer.width, gbuffer.height, 1);
-    gl::checkErrors("irradiance filter (copy)");
-    return;
-  }
-  if (ping_.width() != gbuffer.width || ping_.height() != gbuffer.height) {
+  const RtslcSettings& lightcuts = options.lightcuts;
+  const int passes = std::max(options.passes, 0);
+  if (passes > 0 && (ping_.width() != gbuffer.width || ping_.height() != gbuffer.height)) {
     ping_ = gl::Texture2D({passes::kIrradianceFilter, "ping", kImageSize}, gbuffer.width, gbuffer.height, GL_RGBA32F);
     pong_ = gl::Texture2D({passes::kIrradianceFilter, "pong", kImageSize}, gbuffer.width, gbuffer.height, GL_RGBA32F);
   }
-  std::vector<gpu::IrradianceFilterUniforms> passes(size_t(filter.passes));
-  for (int i = 0; i < filter.passes; ++i) {
-    gpu::IrradianceFilterUniforms& u = passes[size_t(i)];
-    u.stepSize = 1 << i;
-    u.passes = filter.passes;
-    u.normalPower = filter.normalPower;
-    u.planeSigma = std::max(filter.planeSigma, 1e-6f);
-    u.luminanceSigma = std::max(filter.ratioSigma, 1e-6f);
+  // Dispatch 0 resolves and estimates the variance; dispatch i > 0 is the a-trous pass with holes 2^(i-1).
+  std::vector<gpu::IrradianceFilterUniforms> dispatches(size_t(passes) + 1);
+  for (int i = 0; i <= passes; ++i) {
+    gpu::IrradianceFilterUniforms& u = dispatches[size_t(i)];
+    u.stage = i == 0 ? gpu::kIrradianceVariance : gpu::kIrradiancePass;
+    u.stepSize = i == 0 ? 1 : 1 << (i - 1);
+    u.passes = passes;
+    u.interleave = unsigned(std::max(lightcuts.interleave, 1));
+    u.normalPower = lightcuts.filterNormalPower;
+    u.planeSigma = std::max(lightcuts.filterPlaneSigma, 1e-6f);
+    u.luminanceSigma = std::max(lightcuts.filterSigma, 1e-6f);
     u.sigmaFade = options.sigmaFade;
-    u.frames = float(std::max(options.frames, 1));
+    u.hasMoments = options.moments ? 1u : 0u;
+    u.minTemporal = kMinTemporalFrames;
   }
-  uniforms_.upload(passes);
+  uniforms_.upload(dispatches);
   gbuffer.bindForReading();
-  // Pass i reads the last pass's output; the last pass writes `filtered`.
+  if (options.moments) options.moments->bindTexture(LGH_TEXTURE_FILTER_SECOND);
+  // Each dispatch reads the last one's output; the last writes `filtered`.
   const gl::Texture2D* signal = &irradiance;
   gl::Texture2D* out = &ping_;
-  for (int i = 0; i < filter.passes; ++i) {
-    if (i + 1 == filter.passes) out = &filtered;
+  for (int i = 0; i <= passes; ++i) {
+    if (i == passes) out = &filtered;
     signal->bindTexture(LGH_TEXTURE_FILTER_SIGNAL);
     out->bindImage(LGH_IMAGE_FILTER_OUT, GL_WRITE_ONLY);
     uniforms_.bind(size_t(i), LGH_UBO_PASS);
