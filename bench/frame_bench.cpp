@@ -216,7 +216,7 @@ struct LightcutTimes {
 LightcutTimes measureLightcuts(RenderBench& bench, const RenderSettings& settings, const FrameBenchOptions& options) {
   LightcutTimes t;
   RenderSettings s = settings;
-  s.indirectMethod = "rtslc";
+  s.indirectMethod = IndirectMethod::Rtslc;
   s.rtslc.samples = options.lightcutSamples;
   bench.renderer().render(s);  // warm-up: S0 as the LGH frames' first, the shaders compiled
   {

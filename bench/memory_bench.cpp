@@ -87,7 +87,7 @@ Measured measure(RenderBench& bench, const RenderSettings& s) {
   Measured m;
   // From what a frame without indirect light holds, so that the peak is this configuration's own build.
   RenderSettings off = s;
-  off.indirect = false;
+  off.indirectMethod = IndirectMethod::None;
   bench.renderer().render(off);
   gl::memory().resetPeak();
   try {
@@ -111,7 +111,7 @@ std::string perUnit(double bytes, double units) {
 }
 
 const char* structureOwner(const RenderSettings& s) {
-  return s.indirectMethod == "rtslc" ? passes::kLightTreeBuild : passes::kLghBuild;
+  return s.indirectMethod == IndirectMethod::Rtslc ? passes::kLightTreeBuild : passes::kLghBuild;
 }
 
 std::pair<int, int> parseSize(const std::string& text) {
@@ -180,7 +180,7 @@ void lightsTable(RenderBench& bench, const MemoryBenchOptions& options, Report& 
     for (const double budget : options.vplCounts) {
       const size_t vpls = size_t(budget);
       RenderSettings s = base;
-      s.indirectMethod = method;
+      s.indirectMethod = choiceValue<IndirectMethod>(method, kIndirectMethodChoices);
       s.inputLights.vpls = int(vpls);
       const Measured m = measure(bench, s);
       std::fprintf(stderr, "  %s %s VPLs done\n", method, shortCount(vpls).c_str());
@@ -222,7 +222,7 @@ void sizesTable(RenderBench& bench, const MemoryBenchOptions& options, Report& r
     double firstPerPixel = -1;
     for (const std::string& size : options.sizes) {
       RenderSettings s = options.render.settings;
-      s.indirectMethod = method;
+      s.indirectMethod = choiceValue<IndirectMethod>(method, kIndirectMethodChoices);
       s.inputLights.vpls = int(options.fixedVpls);
       std::tie(s.image.width, s.image.height) = parseSize(size);
       const Measured m = measure(bench, s);
@@ -246,7 +246,7 @@ void samplesTable(RenderBench& bench, const MemoryBenchOptions& options, Report&
   r.row({"method", "k / n", "interleave", "accumulate", "all MB", "B / px", "shadow rays B / px", "history B / px"});
   auto add = [&](const RenderSettings& s, const std::string& samples) {
     const Held h = measure(bench, s).held;
-    r.row({s.indirectMethod, samples,
+    r.row({choiceName(s.indirectMethod, kIndirectMethodChoices), samples,
            std::to_string(s.lightPass.interleave) + "x" + std::to_string(s.lightPass.interleave),
            s.accumulation.enabled ? "on" : "off", mb(h.total), perUnit(double(h.pixels), pixels),
            perUnit(double(h.owner(passes::kShadowRays)), pixels),
@@ -268,7 +268,7 @@ void samplesTable(RenderBench& bench, const MemoryBenchOptions& options, Report&
   for (auto [n, m] : {std::pair{8, 1}, {8, 2}, {2, 4}}) {
     RenderSettings s = base;
     s.inputLights.vpls = int(options.fixedVpls);
-    s.indirectMethod = "rtslc";
+    s.indirectMethod = IndirectMethod::Rtslc;
     s.rtslc.samples = n;
     s.rtslc.interleave = m;
     const Held h = measure(bench, s).held;
@@ -287,7 +287,7 @@ void extentTable(RenderBench& bench, const MemoryBenchOptions& options, Report& 
   std::vector<gpu::GpuLight> lights = s0.lights.download<gpu::GpuLight>(s0.count);
   const LghBuildOptions rendered = bench.renderer().renderer().buildOptions();
   RenderSettings off = s;
-  off.indirect = false;
+  off.indirectMethod = IndirectMethod::None;
   bench.renderer().render(off);  // only the scene held: the hierarchies below are all there is
   LghBuildPass pass(GLAD_GL_NV_shader_atomic_float != 0);
   r.heading("Against the scene's extent (the " + formatCount(lights.size()) +

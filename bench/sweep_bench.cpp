@@ -114,6 +114,13 @@ int runSweep(const SweepOptions& options, std::vector<PointSpec> points) {
   return 1;
 }
 
+// The range the renderer accepts for a setting (render/settings.h), so that a grid list is checked as the
+// setting itself is.
+CLI::Range settingRange(const char* name) {
+  const SettingInfo info = settingInfo(name);
+  return CLI::Range(info.min, info.max);
+}
+
 // The grid's lists and the repeats.
 void addGridOptions(CLI::App& command, SweepOptions& options) {
   command
@@ -125,20 +132,20 @@ void addGridOptions(CLI::App& command, SweepOptions& options) {
       ->capture_default_str();
   command.add_option("--alpha", options.alphas, "alphas, comma-separated")
       ->delimiter(',')
-      ->check(CLI::Range(0.25, 16.0))
+      ->check(settingRange("alpha"))
       ->capture_default_str();
   command.add_option("--start-level", options.startLevels, "start levels (0, 1), comma-separated")
       ->delimiter(',')
-      ->check(CLI::Range(0, 1))
+      ->check(settingRange("start-level"))
       ->capture_default_str();
   command.add_option("--interleave", options.interleave, "interleaving factors n (n x n tiles), comma-separated")
       ->delimiter(',')
-      ->check(CLI::Range(1, 8))
+      ->check(settingRange("interleave"))
       ->capture_default_str();
   command
       .add_option("--shadow-samples", options.shadowSamples, "k, comma-separated (0-16; 0: unshadowed, no selection)")
       ->delimiter(',')
-      ->check(CLI::Range(0, 16))
+      ->check(settingRange("shadow-samples"))
       ->capture_default_str();
   command.add_option("--filter", options.filter, "shadow filter: on, off, or on,off")
       ->delimiter(',')
@@ -156,10 +163,10 @@ void addGridOptions(CLI::App& command, SweepOptions& options) {
                   "stochastic lightcuts (the peer method) beside the LGH grid: samples per pixel n, comma-separated "
                   "(1-32; none: no lightcut points); with the same --filter and --frames")
       ->delimiter(',')
-      ->check(CLI::Range(1, int(gpu::kMaxCutNodes)));
+      ->check(settingRange("rtslc-samples"));
   command.add_option("--rtslc-block", options.rtslcBlocks, "lightcuts: cut-sharing blocks B (1: per pixel)")
       ->delimiter(',')
-      ->check(CLI::Range(1, 64))
+      ->check(settingRange("rtslc-block"))
       ->capture_default_str();
   command.add_option("--rtslc-interleave", options.rtslcInterleave, "lightcuts: interleaving m (1, 2, 4)")
       ->delimiter(',')

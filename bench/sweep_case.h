@@ -42,7 +42,7 @@ struct Measurement {
   double buildMs = kNaN;                                  // the LGH's build, or the lightcuts' tree build
   bool extrapolated = false;
   LightStats lights;
-  std::vector<double> rmseUnshadowed, psnrUnshadowed, rmseShadowed, psnrShadowed;
+  std::vector<double> rmseUnshadowed, psnrUnshadowed, rmseShadowed, psnrShadowed, maeShadowed;
   std::vector<double> rmseExactRatio;  // LGH: the irradiance with the reference's visibility ratio (the floor)
   double othersCpu = 0;  // the largest share of the machine other processes took during an accepted sample
   std::string image;     // .npy of the (shadowed) estimate, relative to the output folder
@@ -60,6 +60,7 @@ struct Measurement {
   void addShadowedError(const ErrorStats& e) {
     rmseShadowed.push_back(e.rmse);
     psnrShadowed.push_back(e.psnr);
+    maeShadowed.push_back(e.mae);
   }
   double passMedian(const std::string& pass) const {
     const auto it = passMs.find(pass);

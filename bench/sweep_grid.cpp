@@ -23,7 +23,7 @@ bool PointSpec::operator<(const PointSpec& o) const {
 RenderSettings PointSpec::applied(const RenderSettings& base) const {
   RenderSettings s = base;
   if (lightcuts) {
-    s.indirectMethod = "rtslc";
+    s.indirectMethod = IndirectMethod::Rtslc;
     s.rtslc.samples = k;
     s.rtslc.blockSize = block;
     s.rtslc.interleave = interleave;

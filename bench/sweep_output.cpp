@@ -8,6 +8,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <thread>
+#include <type_traits>
 
 #include "bench/bench_setup.h"
 #include "bench/progress.h"
@@ -88,7 +89,8 @@ constexpr const char* kCsvHeader =
     "shadow_samples,filter,subset_lights,levels,grid_lights,fragments_per_pixel,shaded_per_pixel,time_ms,time_ms_min,"
     "time_ms_max,time_unshadowed_ms,build_ms,light_pass_ms,interleave_ms,shadow_rays_ms,shadow_filter_ms,frame_ms,"
     "extrapolated,rmse_unshadowed,psnr_unshadowed,rmse_shadowed,psnr_shadowed,rmse_shadowed_min,rmse_shadowed_max,"
-    "reference_pixels,others_cpu,image,frames,rmse_exact_ratio,rtslc_block,rtslc_cuts_ms,rtslc_sampling_ms";
+    "reference_pixels,others_cpu,image,frames,rmse_exact_ratio,rtslc_block,rtslc_cuts_ms,rtslc_sampling_ms,mae_"
+    "shadowed,mae_shadowed_min,mae_shadowed_max";
 
 std::string num(double v) {
   if (!std::isfinite(v)) return std::string();
@@ -117,7 +119,7 @@ std::vector<std::string> pointCells(const Measurement& m) {
 }
 
 std::vector<std::string> csvCells(const Case& c, const Measurement& m) {
-  const Spread t = spreadOf(m.timeMs), rs = spreadOf(m.rmseShadowed);
+  const Spread t = spreadOf(m.timeMs), rs = spreadOf(m.rmseShadowed), ms = spreadOf(m.maeShadowed);
   const bool timed = !m.timeMs.empty(), shadowed = !m.rmseShadowed.empty();
   const bool interleaved = m.lgh() && m.point.interleave > 1;
   std::vector<std::string> cells = {c.scene.name,
@@ -157,7 +159,10 @@ std::vector<std::string> csvCells(const Case& c, const Measurement& m) {
         num(median(m.rmseExactRatio)),
         m.lightcuts() ? std::to_string(m.point.block) : "",
         m.lightcuts() ? num(m.passMedian(passes::kLightcutCuts)) : "",
-        m.lightcuts() ? num(m.passMedian(passes::kLightcutSampling)) : ""})
+        m.lightcuts() ? num(m.passMedian(passes::kLightcutSampling)) : "",
+        num(ms.median),
+        shadowed ? num(ms.min) : "",
+        shadowed ? num(ms.max) : ""})
     cells.push_back(std::move(cell));
   return cells;
 }
@@ -180,7 +185,12 @@ json significant(const std::vector<double>& v) {
 
 json settingsJson(RenderSettings s) {
   json j;
-  visitSettings(s, [&](auto& value, const SettingInfo& info) { j[info.name] = value; });
+  visitSettings(s, [&](auto& value, const SettingInfo& info) {
+    if constexpr (std::is_enum_v<std::decay_t<decltype(value)>>)
+      j[info.name] = choiceName(value, info.choices);
+    else
+      j[info.name] = value;
+  });
   return j;
 }
 
@@ -202,6 +212,7 @@ json definitionsJson() {
            "LGH: the relative RMSE of its irradiance times the reference's own visibility ratio (shadowed / "
            "unshadowed luminance): the floor any shadow estimate composited on this irradiance can reach"},
           {"psnr", "10 log10(max r^2 / mean (a - r)^2) over the reference's pixels, luminance, dB"},
+          {"mae", "relative mean absolute error of luminance, sum |a - r| / sum |r|: outliers do not dominate it"},
           {"compared",
            "irradiance before albedo: Aov::Irradiance (unshadowed) and Aov::Irradiance x Aov::Visibility (shadowed)"},
           {"others_cpu",
@@ -244,6 +255,7 @@ json measurementJson(const Measurement& m, const json& baseSettings) {
   jm["psnr_unshadowed"] = significant(m.psnrUnshadowed);
   jm["rmse_shadowed"] = significant(m.rmseShadowed);
   jm["psnr_shadowed"] = significant(m.psnrShadowed);
+  jm["mae_shadowed"] = significant(m.maeShadowed);
   if (!m.rmseExactRatio.empty()) jm["rmse_exact_ratio"] = significant(m.rmseExactRatio);
   if (!m.image.empty()) jm["image"] = m.image;
   return jm;

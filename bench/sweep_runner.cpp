@@ -572,7 +572,7 @@ void writeMeasured(ByteWriter& w, const Measurement& m) {
     w.vector(ms);
   }
   for (const std::vector<double>* v : {&m.timeMs, &m.timeUnshadowedMs, &m.frameMs, &m.rmseUnshadowed, &m.psnrUnshadowed,
-                                       &m.rmseShadowed, &m.psnrShadowed, &m.rmseExactRatio})
+                                       &m.rmseShadowed, &m.psnrShadowed, &m.maeShadowed, &m.rmseExactRatio})
     w.vector(*v);
   w.pod(m.buildMs);
   w.pod(m.extrapolated);
@@ -595,7 +595,7 @@ bool readMeasured(ByteReader& r, Measurement& m) {
     if (!r.string(pass) || !r.vector(m.passMs[pass])) return false;
   }
   for (std::vector<double>* v : {&m.timeMs, &m.timeUnshadowedMs, &m.frameMs, &m.rmseUnshadowed, &m.psnrUnshadowed,
-                                 &m.rmseShadowed, &m.psnrShadowed, &m.rmseExactRatio})
+                                 &m.rmseShadowed, &m.psnrShadowed, &m.maeShadowed, &m.rmseExactRatio})
     if (!r.vector(*v)) return false;
   if (!r.pod(m.buildMs) || !r.pod(m.extrapolated) || !r.pod(m.othersCpu) || !r.string(m.image)) return false;
   LightStats& l = m.lights;

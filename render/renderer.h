@@ -3,7 +3,6 @@
 // and the per-pass timings. lgh-render, lgh-viewer, the tests and the benchmarks all render
 // through this class; there is no second implementation of a pass anywhere.
 
-#include <set>
 #include <string>
 #include <vector>
 
@@ -12,6 +11,9 @@
 #include "render/gl/buffer.h"
 #include "render/gl/profiler.h"
 #include "render/image_io.h"
+#include "render/indirect/indirect_light.h"
+#include "render/indirect/lgh_indirect.h"
+#include "render/indirect/rtslc_indirect.h"
 #include "render/light_builds.h"
 #include "render/pass_names.h"
 #include "render/passes/accumulation_pass.h"
@@ -19,31 +21,9 @@
 #include "render/passes/direct_light_pass.h"
 #include "render/passes/gbuffer_pass.h"
 #include "render/passes/input_lights_pass.h"
-#include "render/passes/interleave_pass.h"
-#include "render/passes/irradiance_filter_pass.h"
-#include "render/passes/lgh_build_pass.h"
-#include "render/passes/light_tree_pass.h"
-#include "render/passes/light_volume_pass.h"
-#include "render/passes/rtslc_pass.h"
-#include "render/passes/shadow_filter_pass.h"
-#include "render/passes/shadow_ray_pass.h"
-#include "render/passes/shadow_targets_pass.h"
 #include "render/settings.h"
 
 namespace lgh {
-
-// What the LGH part of the frame drew, in device-independent counts.
-struct LightStats {
-  size_t inputLights = 0, pointLights = 0, emitterSamples = 0, vpls = 0;  // S0 and its parts
-  int levels = 0;                                                         // L of the hierarchy in use
-  std::vector<size_t> lightsPerLevel;  // lights drawn by the light pass: [0] S0, [l] level l
-  // Per pixel of the image, only with settings.overdraw: fragments rasterized (the paper's Fig. 5
-  // overdraw), fragments that shaded (non-zero blending weight), and the largest rasterized count.
-  double rasterizedPerPixel = 0, shadedPerPixel = 0;
-  unsigned maxRasterized = 0;
-  // Shaded / rasterized: the share of the light pass's fragment work that adds light (0 if none ran).
-  double efficiency() const { return rasterizedPerPixel > 0 ? shadedPerPixel / rasterizedPerPixel : 0.0; }
-};
 
 struct FrameStats {
   std::vector<gl::PassTiming> passes;
@@ -84,54 +64,37 @@ class Renderer {
   const gl::Texture2D& texture(Aov aov) const;
   float clampDistance() const;           // d_c in use (resolves the automatic default)
   LghBuildOptions buildOptions() const;  // how the hierarchy is built (levels, smallest top cell)
-  // The input lights and hierarchy in use (built by the first render()).
+  // The input lights and the structures over them (built by the first render() that draws them).
   const InputLights& inputLights() const { return inputLights_; }
-  const GpuHierarchy& hierarchy() const { return hierarchy_; }
-  const ShadowSlots& shadowSlots() const { return shadowSlots_; }  // the last frame's selection
-  const GpuLightTree& lightTree() const { return lightTree_; }     // with --indirect-method rtslc
+  const GpuHierarchy& hierarchy() const { return lgh_.hierarchy(); }
+  const ShadowSlots& shadowSlots() const { return lgh_.shadowSlots(); }  // the LGH's last selection
+  const GpuLightTree& lightTree() const { return rtslc_.lightTree(); }   // with indirect-method rtslc
 
  private:
   // What the settings switch on, which decides the targets the frame holds and what its passes keep.
   struct Configuration {
     int width = 0, height = 0, interleave = 1;
-    bool lgh = false, hierarchy = false, shadowed = false, lightcuts = false;
-    bool overdraw = false, accumulating = false;
+    IndirectMethod method = IndirectMethod::None;
+    bool shadowed = false, overdraw = false, accumulating = false;
     bool operator==(const Configuration& o) const;
     bool operator!=(const Configuration& o) const { return !(*this == o); }
   };
   Configuration configuration() const;
-  // Allocates the targets `configured_` uses and frees the rest, with what the passes and the light
-  // builds hold for a method or feature that is off: the frame holds only what it uses.
+  // Chooses the indirect method for `configured_` and allocates the targets it uses; what is off (the
+  // other method, S0 without indirect light, the history) is freed: the frame holds only what it uses.
   void allocateTargets();
-  void releaseUnused();
   void uploadFrameUniforms(const CameraView& view);
-  bool pointLightsThroughLgh() const;
-  bool shadowed() const { return settings_.shadows.samples > 0; }
-  // The indirect light through the stochastic lightcuts instead of the LGH (settings.indirectMethod).
-  bool lightcuts() const;
-  // Shadow rays aim at input lights drawn from the selected grid lights' clusters.
-  bool drawsShadowTargets() const { return shadowEstimator_.drawnTargets > 0 && hierarchy_.gridLightCount > 0; }
-  // This frame's shadow estimator (the settings resolved against its limits); says once on stderr what a
-  // limit switched off.
-  void resolveShadows();
-  bool interleaved() const { return settings_.lightPass.interleave > 1; }
-  bool accumulating() const { return settings_.indirect && settings_.accumulation.enabled; }
+  // The scene's point lights go into S0 (too many for exact direct light).
+  bool pointLightsInS0() const;
+  bool accumulating() const { return method_ && settings_.accumulation.enabled; }
+  IndirectFrame indirectFrame();
+  // S0 when its settings or the lights changed, and the method's structure over it when out of date.
+  bool updateLights(const IndirectFrame& frame);
   // Restarts the history when the lights were rebuilt or the estimate's settings changed, and counts
   // the frames it holds while the camera is still.
   int updateAccumulation(bool lightsRebuilt, const CameraView& view);
-  // Each pass's settings group: the user's settings with what this frame resolves.
-  LightPassOptions lightPassOptions() const;
-  // What the shadow rays read of the light pass that filled the slots (`lightPass`), to recompute its selection.
-  static ShadowRayOptions shadowRayOptions(const LightPassOptions& lightPass);
-  ShadowFilterOptions shadowFilterOptions() const;
-  RtslcOptions rtslcOptions() const;
-  LightPassTarget lightPassTarget();
-  // The frame's steps that are more than one call: S0 and the hierarchy when they are out of date,
-  // then the light pass with its optional interleaving.
-  bool updateLights();
-  LightPassDraws shadeIndirect(const LightPassOptions& options);
-  LightStats lightStats(const LightPassDraws& draws) const;
-  void measureOverdraw(LightStats& stats) const;
+  // The method's raw estimate summed into its history, the accumulated estimate in its place.
+  void accumulate(const IndirectFrame& frame, const CameraView& view);
   // Runs `pass` inside a profiler scope called `name` (a passes:: constant).
   template <typename Pass>
   void timed(const char* name, Pass&& pass) {
@@ -146,24 +109,15 @@ class Renderer {
   gl::Buffer frameUniforms_;
   unsigned frameIndex_ = 0;
 
-  // Passes, in frame order.
+  // Passes, in frame order; the indirect methods (render/indirect/) hold theirs.
   GBufferPass gbufferPass_;
   DirectLightPass directPass_;
   InputLightsPass inputLightsPass_;
-  LghBuildPass buildPass_;
-  InterleavePass interleavePass_;
-  LightVolumePass lightPass_;
-  ShadowTargetsPass shadowTargetsPass_;
-  ShadowRayPass shadowRayPass_;
   AccumulationPass accumulationPass_;
-  ShadowFilterPass shadowFilterPass_;
-  LightTreePass lightTreePass_;  // the lightcuts' passes, in place of the LGH's
-  RtslcPass rtslcPass_;
-  IrradianceFilterPass irradianceFilterPass_;
   CompositePass compositePass_;
-
-  ShadowEstimator shadowEstimator_;       // resolved each frame by resolveShadows()
-  std::set<std::string> reportedLimits_;  // what a limit switched off, said once
+  LghIndirect lgh_;
+  RtslcIndirect rtslc_;
+  IndirectLight* method_ = nullptr;  // the configured one; null without indirect light
 
   // What the accumulated history was summed with (settings as text) and where it was seen from.
   std::string accumulationKey_;
@@ -173,24 +127,13 @@ class Renderer {
   // Built when the lights or their settings change, not every frame (LightBuilds decides).
   LightBuilds builds_;
   InputLights inputLights_;
-  GpuHierarchy hierarchy_;
-  GpuLightTree lightTree_;
 
-  // Targets the passes hand to each other.
+  // Targets the frame's own passes hand to each other.
   GBuffer gbuffer_;
   gl::Texture2D direct_;
-  Tiles tiles_;                       // interleaved surfaces and light-pass targets (n > 1)
-  gl::Texture2D irradiance_;          // LGH irradiance, full resolution
-  gl::Texture2D fragmentCounts_;      // R32UI, light-pass fragments per pixel (settings.overdraw)
-  ShadowSlots shadowSlots_;           // k selected lights per light-pass pixel
-  ShadowTargets shadowTargets_;       // input lights drawn per grid light as the rays' targets
-  gl::Texture2D rawRatio_;            // r: visibility ratio from the shadow rays (accumulated; a: frames)
-  gl::Texture2D sampledIrradiance_;   // R32F: the irradiance luminance the shadow samples were drawn against
-  gl::Texture2D visibility_;          // r: filtered ratio
-  gl::Texture2D filteredIrradiance_;  // the lightcuts' irradiance, filtered
-  gl::Texture2D indirect_;            // albedo / pi x irradiance, unshadowed
+  gl::Texture2D indirect_;  // albedo / pi x irradiance (the LGH's unshadowed)
   gl::Texture2D final_;
-  const gl::Texture2D& target(Aov aov) const;  // empty where not rendered
+  const gl::Texture2D* target(Aov aov) const;  // null where not rendered
   mutable gl::Texture2D neutralAov_;           // texture() of an AOV not rendered, made when asked for
 };
 

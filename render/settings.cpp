@@ -1,6 +1,7 @@
 #include "render/settings.h"
 
 #include <algorithm>
+#include <ostream>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -25,6 +26,23 @@ bool isChoice(const char* choices, const std::string& value) {
   return !value.empty() && std::find(list.begin(), list.end(), value) != list.end();
 }
 
+SettingInfo settingInfo(const std::string& name) {
+  RenderSettings settings;
+  bool found = false;
+  SettingInfo info{"", ""};
+  visitSettings(settings, [&](const auto&, const SettingInfo& i) {
+    if (name != i.name) return;
+    info = i;
+    found = true;
+  });
+  if (!found) throw std::invalid_argument("unknown setting '" + name + "'");
+  return info;
+}
+
+std::ostream& operator<<(std::ostream& out, IndirectMethod method) {
+  return out << choiceName(method, kIndirectMethodChoices);
+}
+
 void setSetting(RenderSettings& settings, const std::string& name, const std::string& value) {
   bool found = false;
   std::string names;
@@ -41,6 +59,10 @@ void setSetting(RenderSettings& settings, const std::string& name, const std::st
         field = false;
       else
         throw std::invalid_argument(where + ": '" + value + "' is not true or false");
+    } else if constexpr (std::is_enum_v<T>) {
+      if (!isChoice(info.choices, value))
+        throw std::invalid_argument(where + ": '" + value + "' is not one of " + info.choices);
+      field = choiceValue<T>(value, info.choices);
     } else if constexpr (std::is_arithmetic_v<T>) {
       T v{};
       if (!parseNumber(value, v)) throw std::invalid_argument(where + ": '" + value + "' is not a number");

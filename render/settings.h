@@ -6,6 +6,7 @@
 // constants (shared/*.h), not retyped numbers.
 
 #include <algorithm>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -105,20 +106,23 @@ struct RtslcSettings {
   float errorLimit = 0.001f;  // the cut's distance floor, as a share of the lights' box diagonal
   // The denoiser (IrradianceFilterPass; its passes are ShadowFilterSettings::passes), tuned on the lightcuts
   // (docs/measurements.md, "The lightcuts' denoiser"): SVGF's luminance stop sigma_l in standard deviations,
-  // and the a-trous normal power and plane sigma (the shadow filter's normal power 64 cut the lightcuts'
-  // blur on normal-mapped surfaces to half of what their noise needs).
+  // and the a-trous normal power and plane sigma (the shadow filter's normal power 64 stopped the lightcuts'
+  // blur on Sponza's columns and arches, where their noise needs it: filtered / raw 0.29 against 0.17).
   float filterSigma = 16.0f;
   float filterNormalPower = 4.0f;
   float filterPlaneSigma = 1.0f;
 };
 
+// How the indirect light is made: not at all (emission and direct light only), through the LGH, or by the
+// peer method, real-time stochastic lightcuts (docs/design.md §12). In kIndirectMethodChoices' order.
+enum class IndirectMethod { None, Lgh, Rtslc };
+
 struct RenderSettings {
   ImageSettings image;
-  std::string indirectMethod = "lgh";  // lgh | rtslc
-  bool directShadows = true;           // DirectLightPass: one shadow ray per punctual light
-  bool indirect = true;                // light through the LGH; false: emission and direct light only
-  float clampDistance = 0.0f;          // d_c in metres; 0 = automatic (1e-2 of the scene diagonal)
-  float gpuMemoryLimit = 0;            // MB the engine's GL objects may hold; 0: the device's reported free memory
+  IndirectMethod indirectMethod = IndirectMethod::Lgh;
+  bool directShadows = true;   // DirectLightPass: one shadow ray per punctual light
+  float clampDistance = 0.0f;  // d_c in metres; 0 = automatic (1e-2 of the scene diagonal)
+  float gpuMemoryLimit = 0;    // MB the engine's GL objects may hold; 0: the device's reported free memory
   InputLightSettings inputLights;
   HierarchySettings hierarchy;
   LightPassSettings lightPass;
@@ -126,6 +130,8 @@ struct RenderSettings {
   ShadowFilterSettings filter;
   AccumulationSettings accumulation;
   RtslcSettings rtslc;
+
+  bool indirect() const { return indirectMethod != IndirectMethod::None; }
 };
 
 // Who a setting is for. User: shown by --help, the README and the viewer panel's main section.
@@ -169,7 +175,7 @@ struct SettingInfo {
 // The estimator names (render/shadow_estimator.h) and tone curves, as SettingInfo::choices.
 inline constexpr const char* kShadowEstimatorChoices = "converging|paper|uniform";
 inline constexpr const char* kToneMapChoices = "aces|reinhard|clamp";
-inline constexpr const char* kIndirectMethodChoices = "lgh|rtslc";
+inline constexpr const char* kIndirectMethodChoices = "none|lgh|rtslc";
 
 // visit(value&, SettingInfo) for each setting, in the order users see them.
 template <typename Settings, typename Visitor>
@@ -191,11 +197,10 @@ void visitSettings(Settings& s, Visitor&& visit) {
         SettingInfo{"gpu-memory-limit",
                     "MB the GPU buffers and textures may hold (0: the free memory the device reports)", 0, 1e9}
             .keepingHistory());
-  visit(s.indirect, SettingInfo{"indirect", "indirect light through the LGH (false: direct light only)"});
-  visit(s.indirectMethod,
-        SettingInfo{"indirect-method", "lgh (the lighting grid hierarchy) or rtslc (stochastic lightcuts, the peer)"}
-            .forUsers()
-            .oneOf(kIndirectMethodChoices));
+  visit(s.indirectMethod, SettingInfo{"indirect-method",
+                                      "lgh (the lighting grid hierarchy), rtslc (stochastic lightcuts, the peer), none"}
+                              .forUsers()
+                              .oneOf(kIndirectMethodChoices));
   auto& lights = s.inputLights;
   visit(lights.vpls, SettingInfo{"vpls", "VPL budget (ceil(vpls / bounces) light paths)", 0, 16000000}.forUsers());
   visit(lights.bounces, SettingInfo{"bounces", "diffuse bounces per light path, a VPL at each", 1, 3});
@@ -308,8 +313,23 @@ void visitSettings(Settings& s, Visitor&& visit) {
 void setSetting(RenderSettings& settings, const std::string& name, const std::string& value);
 // "NAME=VALUE" form of setSetting.
 void applySetting(RenderSettings& settings, const std::string& assignment);
+// The setting called `name` (its help, range, tier, choices); throws std::invalid_argument when there is none.
+SettingInfo settingInfo(const std::string& name);
 // SettingInfo::choices ("a|b|c") as a list, and whether `value` is one of them.
 std::vector<std::string> choiceList(const char* choices);
 bool isChoice(const char* choices, const std::string& value);
+// An enum setting holds the index of its value in its SettingInfo::choices: its value as text, and back
+// (the value must be one of the choices).
+template <typename Enum>
+std::string choiceName(Enum value, const char* choices) {
+  return choiceList(choices).at(size_t(value));
+}
+template <typename Enum>
+Enum choiceValue(const std::string& name, const char* choices) {
+  const std::vector<std::string> list = choiceList(choices);
+  return Enum(std::find(list.begin(), list.end(), name) - list.begin());
+}
+// The method's choice name (lgh, rtslc, none): what settings keys, CSVs and messages print.
+std::ostream& operator<<(std::ostream& out, IndirectMethod method);
 
 }  // namespace lgh

@@ -21,8 +21,8 @@ GPU_STRUCT(IrradianceFilterUniforms) {
   float luminanceSigma;  // sigma_l: the luminance stop's scale, in standard deviations of the difference
   float sigmaFade;       // floor(sigmaFade log2 N) widest passes skipped over N accumulated frames
 
-  uint hasMoments;      // 1: the accumulation's moments (ratio image: g the mean's variance, a N) are bound
-  uint minTemporal;     // frames from which the temporal variance replaces the spatial estimate
+  uint hasMoments;   // 1: the accumulation's moments (ratio image: g the mean's variance, a N) are bound
+  uint minTemporal;  // frames from which the temporal variance replaces the spatial estimate
   uint pad0, pad1;
 };
 GPU_CHECK_OFFSET(IrradianceFilterUniforms, normalPower, 16);

@@ -41,12 +41,21 @@ inline std::string addSettingsOptions(CLI::App& app, RenderSettings& settings, c
       return;
     }
     const std::string flag = std::string("--") + info.name;
-    // Booleans take an explicit value so a default of true can be turned off: --direct-shadows=false.
-    CLI::Option* option = app.add_option(flag, value, info.help)->capture_default_str();
+    // Booleans take an explicit value so a default of true can be turned off: --direct-shadows=false. An enum
+    // is given by its choice's name (checked below, before the callback).
+    CLI::Option* option = nullptr;
+    if constexpr (std::is_enum_v<T>)
+      option =
+          app.add_option_function<std::string>(
+                 flag, [&value, choices = info.choices](const std::string& v) { value = choiceValue<T>(v, choices); },
+                 info.help)
+              ->default_str(choiceName(value, info.choices));
+    else
+      option = app.add_option(flag, value, info.help)->capture_default_str();
     if (info.tier != SettingTier::User) option->group(advanced);
     if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>)
       if (info.min < info.max) option->check(CLI::Range(T(info.min), T(info.max)));
-    if constexpr (std::is_same_v<T, std::string>)
+    if constexpr (std::is_same_v<T, std::string> || std::is_enum_v<T>)
       if (info.choices)
         option->check(CLI::Validator(
             [choices = info.choices](std::string& v) {

@@ -106,8 +106,8 @@ void printSummary(const Command& c, const lgh::gl::Context& context, const lgh::
   std::printf("lights     %zu punctual, %zu emissive materials\n", scene.lights.size(),
               size_t(std::count_if(scene.materials.begin(), scene.materials.end(),
                                    [](const lgh::Material& m) { return m.isEmissive(); })));
-  if (c.settings.indirect) printLightPassSummary(c.settings, stats.lights);
-  if (c.settings.indirect && c.settings.accumulation.enabled)
+  if (c.settings.indirect()) printLightPassSummary(c.settings, stats.lights);
+  if (c.settings.indirect() && c.settings.accumulation.enabled)
     std::printf("accumulate %d frames in the history (at most %d)\n", stats.accumulatedFrames,
                 c.settings.accumulation.maxFrames);
   std::printf("load       %.1f ms, GPU setup %.1f ms\n", loadMs, setupMs);

@@ -188,7 +188,7 @@ bool Viewer::needsRender() const {
   // A still view keeps rendering while the accumulated history is not full: each frame lowers its error.
   const RenderSettings& s = renderer_.settings();
   const bool accumulating =
-      rendered_ && s.indirect && s.accumulation.enabled && lastFrame_.accumulatedFrames < s.accumulation.maxFrames;
+      rendered_ && s.indirect() && s.accumulation.enabled && lastFrame_.accumulatedFrames < s.accumulation.maxFrames;
   return state_.continuous || accumulating || frameKey() != renderedKey_;
 }
 
@@ -352,7 +352,7 @@ void Viewer::display() {
   options.toneMap = parseToneMap(state_.settings.image.toneMap);
   options.largestCount = lastFrame_.lights.maxRasterized;
   displayPass_.execute(renderer_.texture(state_.view), options, displayImage_);
-  if (state_.pointsLevel > 0 && s.indirect && !s.lightPass.bruteForce)
+  if (state_.pointsLevel > 0 && s.indirectMethod == IndirectMethod::Lgh && !s.lightPass.bruteForce)
     gridPointsPass_.execute({renderer_.hierarchy(), frameView_, renderer_.gbuffer().position}, state_.pointsLevel,
                             state_.pointSize, displayImage_);
 }

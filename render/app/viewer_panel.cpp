@@ -87,6 +87,12 @@ bool drawSettings(RenderSettings& settings, const Scene& scene, SettingTier tier
                                       kClamp | (logarithmic ? ImGuiSliderFlags_Logarithmic : 0));
       else
         changed |= ImGui::InputFloat(info.name, &value);
+    } else if constexpr (std::is_enum_v<T>) {
+      std::string text = choiceName(value, info.choices);
+      if (choiceCombo(info.name, text, info.choices)) {
+        value = choiceValue<T>(text, info.choices);
+        changed = true;
+      }
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (name == "camera")
         changed |= cameraCombo(info.name, value, scene);
@@ -184,9 +190,9 @@ void drawStatus(const ViewerState& state, const PanelInfo& info) {
   if (const FrameStats* f = info.lastFrame) {
     const LightStats& l = f->lights;
     ImGui::Text("frame %.0f ms%s", f->totalMs(), f->lightsRebuilt ? ", lights rebuilt" : "");
-    if (state.settings.indirect && state.settings.accumulation.enabled)
+    if (state.settings.indirect() && state.settings.accumulation.enabled)
       ImGui::Text("accumulated %d frames (at most %d)", f->accumulatedFrames, state.settings.accumulation.maxFrames);
-    if (state.settings.indirect) {
+    if (state.settings.indirect()) {
       ImGui::TextWrapped("S0 %zu lights: %zu VPLs, %zu emitter samples, %zu point lights", l.inputLights, l.vpls,
                          l.emitterSamples, l.pointLights);
       std::string levels;

@@ -43,7 +43,7 @@ Rendered render(const std::filesystem::path& file, int width = 160, int height =
   const Scene scene = loadScene(file);
   const SceneGpu gpu(scene);
   RenderSettings settings;
-  settings.indirect = false;  // direct light alone, against its closed form
+  settings.indirectMethod = IndirectMethod::None;  // direct light alone, against its closed form
   settings.image.width = width;
   settings.image.height = height;
   Renderer renderer(gpu, settings);

@@ -41,7 +41,7 @@ TEST_F(FinitePixelsTest, InterleavedFilteredLightcutsFrame) {
   LGH_REQUIRE_SHARED_SCENE(path, "cornell_emissive/cornell_emissive.gltf");
   const Scene scene = loadScene(path);
   RenderSettings s = settings();
-  s.indirectMethod = "rtslc";
+  s.indirectMethod = IndirectMethod::Rtslc;
   s.rtslc.samples = 1;
   s.rtslc.interleave = 4;
   EXPECT_EQ(nonFinitePixels(scene, s), 0u);

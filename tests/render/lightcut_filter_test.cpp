@@ -75,7 +75,7 @@ class LightcutFilterTest : public GLTest {
     settings.inputLights.maxDirectLights = 0;  // the point lights are S0
     settings.inputLights.vpls = 0;
     settings.inputLights.emitterSamples = 0;
-    settings.indirectMethod = "rtslc";
+    settings.indirectMethod = IndirectMethod::Rtslc;
     settings.rtslc.samples = 4;
     settings.rtslc.blockSize = 8;
     settings.directShadows = false;

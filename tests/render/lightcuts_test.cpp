@@ -114,7 +114,7 @@ class LightcutsFrameTest : public GLTest {
     settings.image.height = 90;
     settings.inputLights.vpls = 2000;
     settings.inputLights.bounces = 1;
-    settings.indirectMethod = "rtslc";
+    settings.indirectMethod = IndirectMethod::Rtslc;
     settings.rtslc.samples = 4;
     settings.filter.passes = 0;  // raw
   }

@@ -117,7 +117,7 @@ TEST_F(FrameMemoryTest, ALongRunHoldsConstantMemory) {
   settings.lightPass.interleave = 2;
   for (const char* method : {"lgh", "rtslc"}) {
     SCOPED_TRACE(method);
-    settings.indirectMethod = method;
+    settings.indirectMethod = choiceValue<IndirectMethod>(method, kIndirectMethodChoices);
     SceneGpu gpu(scene);
     Renderer renderer(gpu, settings);
     for (int f = 0; f < 3; ++f) renderer.render(view());
@@ -134,7 +134,7 @@ TEST_F(FrameMemoryTest, SwitchingMethodOrSizeComesBackToTheSameBytes) {
   const size_t sceneBytes = memory().liveBytes();
   Renderer renderer(gpu, settings);
   RenderSettings lgh = settings, rtslc = settings;
-  rtslc.indirectMethod = "rtslc";
+  rtslc.indirectMethod = IndirectMethod::Rtslc;
   const size_t lghBytes = heldAfter(renderer, lgh);
   for (const char* owner : kLightcutOwners) EXPECT_EQ(ownerBytes(owner), 0u) << owner << " while the LGH runs";
   heldAfter(renderer, rtslc);
@@ -163,7 +163,7 @@ TEST_F(FrameMemoryTest, FeaturesThatAreOffHoldNothing) {
   RenderSettings accumulating = settings, still = settings, unshadowed = settings, noIndirect = settings;
   accumulating.accumulation.enabled = true;
   unshadowed.shadows.samples = 0;
-  noIndirect.indirect = false;
+  noIndirect.indirectMethod = IndirectMethod::None;
   heldAfter(renderer, accumulating);
   EXPECT_GT(ownerBytes(passes::kAccumulation), 0u);
   const size_t stillBytes = heldAfter(renderer, still);

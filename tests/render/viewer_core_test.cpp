@@ -69,7 +69,7 @@ TEST(ViewerScript, SettingsByTheirCliNamesWithinTheirRanges) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("0.25"), std::string::npos) << "the range should be named: " << e.what();
   }
-  EXPECT_THROW(setSetting(s, "indirect", "maybe"), std::invalid_argument);
+  EXPECT_THROW(setSetting(s, "indirect-method", "maybe"), std::invalid_argument);
   EXPECT_THROW(setSetting(s, "seed", "99999999999"), std::invalid_argument);
 }
 

@@ -1,0 +1,79 @@
+#include "render/indirect/rtslc_indirect.h"
+
+#include "render/pass_names.h"
+
+namespace lgh {
+
+void RtslcIndirect::allocate(const RenderSettings& settings) {
+  allocated_ = settings;
+  const int w = settings.image.width, h = settings.image.height;
+  auto make = [&](const char* owner, const char* name, GLenum format) {
+    return gl::Texture2D({owner, name, kImageSize}, w, h, format);
+  };
+  for (gl::Texture2D* t : {&irradiance_, &filtered_, &moments_, &sampledIrradiance_}) *t = {};
+  irradiance_ = make(passes::kLightcutSampling, "irradiance", GL_RGBA32F);
+  filtered_ = make(passes::kIrradianceFilter, "filtered irradiance", GL_RGBA32F);
+  if (settings.accumulation.enabled) {
+    moments_ = make(passes::kAccumulation, "ratio", GL_RGBA32F);
+    moments_.clear(glm::vec4(1.0f));
+    sampledIrradiance_ = make(passes::kAccumulation, "sampled irradiance", GL_R32F);
+    sampledIrradiance_.clear(glm::vec4(0.0f));
+  }
+}
+
+void RtslcIndirect::release(LightBuilds& builds) {
+  for (gl::Texture2D* t : {&irradiance_, &filtered_, &moments_, &sampledIrradiance_}) *t = {};
+  lightTree_ = {};
+  builds.freedLightTree();
+  rtslcPass_.release();
+  filterPass_.release();
+}
+
+bool RtslcIndirect::updateStructure(const IndirectFrame& frame, const InputLightKey& lights, LightBuilds& builds) {
+  if (!builds.plan(lights, frame.settings.hierarchy.levels, false, true).lightTree) return false;
+  frame.timed(passes::kLightTreeBuild,
+              [&] { lightTreePass_.execute(frame.lights.lights, frame.lights.count, lightTree_); });
+  builds.builtLightTree();
+  return true;
+}
+
+LightStats RtslcIndirect::estimate(const IndirectFrame& frame) {
+  // A cut of the light tree per pixel block, one light drawn under each cut node per pixel with its shadow
+  // ray: the shadowed irradiance, unbiased.
+  const RtslcInputs in{frame.scene, frame.gbuffer, frame.lights.lights, frame.lights.count, lightTree_};
+  RtslcOptions options;
+  options.settings = frame.settings.rtslc;
+  options.clampDistance = frame.clampDistance;
+  options.frameSeed = frame.frameSeed();
+  frame.timed(passes::kLightcutCuts, [&] { rtslcPass_.selectCuts(in, options); });
+  frame.timed(passes::kLightcutSampling, [&] { rtslcPass_.sample(in, options, {irradiance_}); });
+  return {};
+}
+
+AccumulationSource RtslcIndirect::accumulation(const IndirectFrame&) {
+  // Each frame is unbiased (with m x m interleaving, every m^2 frames are): summed as it is, the luminance's
+  // moments beside it for the filter.
+  return {irradiance_,
+          TileLayout::of(1, allocated_.image.width, allocated_.image.height),
+          0,
+          {irradiance_, moments_, sampledIrradiance_}};
+}
+
+IndirectImage RtslcIndirect::filter(const IndirectFrame& frame) {
+  frame.timed(passes::kIrradianceFilter, [&] {
+    const bool moments = frame.accumulating;
+    filterPass_.execute(frame.gbuffer, irradiance_,
+                        {frame.settings.filter.passes, frame.settings.rtslc,
+                         moments ? frame.settings.accumulation.filterFade : 0.0f, moments ? &moments_ : nullptr},
+                        filtered_);
+  });
+  return {&filtered_, nullptr};
+}
+
+const gl::Texture2D* RtslcIndirect::target(Aov aov) const {
+  // The irradiance is shadowed, and filtered as the composite uses it; the LGH's ratio, visibility and
+  // overdraw have no counterpart here.
+  return aov == Aov::Irradiance ? &filtered_ : nullptr;
+}
+
+}  // namespace lgh
