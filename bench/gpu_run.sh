@@ -2,8 +2,9 @@
 # The prepared GPU run: one call on a machine with an NVIDIA GPU (EGL device platform, no display)
 # builds the project, checks that EGL picked the device platform and a hardware renderer, runs the GL
 # tests that exercise the device path, then measures the paper's Tables 1-3 at 1280x720 with 100K and
-# 1M VPLs, and writes CSV/JSON plus summary.md into the output folder. Planned to finish in under 8
-# minutes on a GPU machine with 8+ cores (the build is most of it; --no-build reuses one).
+# 1M VPLs, the lightcuts' frame, and an equal-time sweep of the LGH against the lightcuts (Sponza 100K,
+# 720p, against the Embree reference on a pixel subset), and writes CSV/JSON plus summary.md into the output
+# folder. Planned to finish in under 10 minutes on a GPU machine with 8+ cores (--no-build skips the build).
 #
 # Without a hardware GPU (llvmpipe, or no EGL device at all) it says so loudly and runs a reduced
 # version (160x90, 1K/10K VPLs on data/cornell_box, one frame per point, three tests) that checks the
@@ -195,6 +196,24 @@ if [[ $mode == full ]]; then rtslc_size=(--width 1920 --height 1080 --vpls 10000
 step rtslc_frame "$bench" frame --backend "$backend" --scene "$sponza" "${camera[@]}" "${rtslc_size[@]}" \
   --interleave 1 --lightcut-samples 8 --repeats "$repeats" --compare-cubes false --compare-targets false
 
+# LGH or light tree on this device: a small equal-time sweep of both methods against the Embree reference
+# (the reference on a pixel subset, on this machine's CPU), one frame: Sponza atrium, 100K VPLs, 720p; the
+# fronts compared as curves by bench/plot_sweep.py (docs/measurements.md, "LGH or light tree?").
+if [[ $mode == full ]]; then
+  race=(--width 1280 --height 720 --vpls 100000 --alpha 0.5,1,2 --interleave 1,4 --shadow-samples 1,4,16
+        --rtslc-samples 1,2,4,8,16,32)
+else  # two points of each, 10K VPLs on the small scene
+  race=(--width "$width" --height "$height" --vpls 10000 --alpha 1 --interleave 1,4 --shadow-samples 4
+        --rtslc-samples 4,16)
+fi
+step equal_time_sweep "$bench" sweep --backend "$backend" --scene "$sponza${camera[1]:+@${camera[1]}}" "${race[@]}" \
+  --start-level 1 --filter on --rtslc-block 8 --rtslc-interleave 1 --uniform-lights 256 --uniform-shadowed-lights 16 \
+  --brute-force-limit 0 --repeats "$repeats" --images false --cache-dir "$out/reference-cache" --out "$out/equal_time"
+plot_python=/usr/bin/python3
+[[ -x $plot_python ]] || plot_python=python3
+"$plot_python" "$source_dir/bench/plot_sweep.py" "$out/equal_time/sweep.csv" > "$out/equal_time_summary.txt" 2>&1 ||
+  log "equal_time_sweep: no plots (plot_sweep.py: see equal_time_summary.txt)"
+
 # --- 5. Summary.
 {
   echo "# GPU run ($mode)"
@@ -209,7 +228,7 @@ step rtslc_frame "$bench" frame --backend "$backend" --scene "$sponza" "${camera
   echo "## Tests"
   echo
   grep -E '^\[  (PASSED|FAILED)|tests? ran' "$out/tests.txt" | sed 's/^/    /'
-  for f in table1_2_build table2_light "${frame_vpls[@]/#/table3_frame_}" rtslc_frame; do
+  for f in table1_2_build table2_light "${frame_vpls[@]/#/table3_frame_}" rtslc_frame equal_time_summary; do
     echo
     echo "## $f"
     echo

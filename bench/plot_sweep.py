@@ -197,6 +197,9 @@ def analyse(rows):
             results[(scene, vpls, kind)] = {"points": points, "front": front, "baselines": baselines, "model": model,
                                             "rtslc_points": rtslc, "rtslc_front": pareto(rtslc) if rtslc else [],
                                             "versus_rtslc": versus(front, pareto(rtslc)) if rtslc else [],
+                                            "curves": {measure: curves_compared(f["lgh"], f["rtslc"])
+                                                       for measure, f in fronts_by_measure(case_rows).items()}
+                                            if rtslc else {},
                                             "brute_ms": brute_ms,
                                             "brute_extrapolated": bool(brute and brute["extrapolated"] == "1"),
                                             "brute_ratio": (number(ratio[spec["time"]]), number(ratio[spec["error"]]))
@@ -221,6 +224,114 @@ def versus(lgh_front, rtslc_front):
         if el is not None and er is not None:
             rows.append({"time": t, "lgh": el, "rtslc": er, "ratio": el / er})
     return rows
+
+
+def log_curve(front):
+    """A Pareto front as a curve: (log time, log error) of its points, joined by straight lines in log-log."""
+    return [(math.log(t), math.log(e)) for t, e, _ in front if t > 0 and e > 0]
+
+
+def along(curve, x, xi=0, yi=1):
+    """The curve's coordinate yi where its coordinate xi is x (linear between points); None outside it."""
+    pts = sorted(curve, key=lambda p: p[xi])
+    if not pts or x < pts[0][xi] or x > pts[-1][xi]:
+        return None
+    for a, b in zip(pts, pts[1:]):
+        if a[xi] <= x <= b[xi]:
+            f = (x - a[xi]) / (b[xi] - a[xi]) if b[xi] > a[xi] else 0.0
+            return a[yi] + f * (b[yi] - a[yi])
+    return pts[0][yi]
+
+
+def curves_compared(lgh_front, rtslc_front, samples=33):
+    """The two fronts as curves (log error against log time), compared only where both reach: LGH / lightcuts
+    error at equal time over the time range both cover, and lightcuts / LGH time at equal error (the LGH's
+    speed-up) over the error range both cover; each at `samples` log-spaced values, as median and range."""
+    lc, rc = log_curve(lgh_front), log_curve(rtslc_front)
+    if len(lc) < 1 or len(rc) < 1:
+        return None
+    result = {}
+    lo, hi = max(lc[0][0], rc[0][0]), min(lc[-1][0], rc[-1][0])
+    if hi >= lo:
+        xs = [min(lo + (hi - lo) * i / (samples - 1), hi) for i in range(samples)] if hi > lo else [lo]
+        ratios = [math.exp(along(lc, x) - along(rc, x)) for x in xs]
+        result["equal_time"] = {"from_ms": math.exp(lo), "to_ms": math.exp(hi), "median": float(np.median(ratios)),
+                                "min": min(ratios), "max": max(ratios)}
+    # Errors fall along a front, so time is a function of error on it.
+    lo, hi = max(lc[-1][1], rc[-1][1]), min(lc[0][1], rc[0][1])
+    if hi >= lo:
+        ys = [min(lo + (hi - lo) * i / (samples - 1), hi) for i in range(samples)] if hi > lo else [lo]
+        speedups = [math.exp(along(rc, y, 1, 0) - along(lc, y, 1, 0)) for y in ys]
+        result["equal_error"] = {"from": math.exp(lo), "to": math.exp(hi), "median": float(np.median(speedups)),
+                                 "min": min(speedups), "max": max(speedups)}
+    return result
+
+
+def check_curves():
+    """--self-test: two power-law fronts e = c t^-p whose answer is known: the LGH's at half the lightcuts'
+    error at every time (0.5x at equal time) reaches each error 2^(1/p) times sooner; only the overlap counts."""
+    p = 0.5
+    lgh = [(t, 1.0 * t ** -p, None) for t in (10, 20, 40, 80, 160)]
+    rtslc = [(t, 2.0 * t ** -p, None) for t in (30, 60, 120, 240, 480)]
+    c = curves_compared(lgh, rtslc)
+    et, ee = c["equal_time"], c["equal_error"]
+    failures = []
+    if not (abs(et["min"] - 0.5) < 1e-9 and abs(et["max"] - 0.5) < 1e-9):
+        failures.append(f"equal time {et['min']}-{et['max']}, want 0.5")
+    if not (abs(et["from_ms"] - 30) < 1e-6 and abs(et["to_ms"] - 160) < 1e-6):
+        failures.append(f"time overlap {et['from_ms']}-{et['to_ms']}, want 30-160")
+    if not (abs(ee["min"] - 2 ** (1 / p)) < 1e-9 and abs(ee["max"] - 2 ** (1 / p)) < 1e-9):
+        failures.append(f"equal error {ee['min']}-{ee['max']}, want {2 ** (1 / p)}")
+    if curves_compared(lgh, [(1000, 0.01, None), (2000, 0.005, None)]).get("equal_time"):
+        failures.append("fronts with no time in common were compared")
+    if failures:
+        sys.exit("plot_sweep.py --self-test: " + "; ".join(failures))
+    print("plot_sweep.py --self-test: the curve comparison passes")
+
+
+def fronts_by_measure(case_rows):
+    """Per error measure (relative RMSE, relative MAE): the LGH's and the lightcuts' shadowed Pareto fronts."""
+    fronts = {}
+    for measure, column in (("rmse", "rmse_shadowed"), ("mae", "mae_shadowed")):
+        by_method = {}
+        for method in ("lgh", "rtslc"):
+            pts = [(number(r["time_ms"]), number(r.get(column, "")), r) for r in case_rows if r["method"] == method]
+            by_method[method] = pareto([p for p in pts if p[0] is not None and p[1] is not None])
+        fronts[measure] = by_method
+    return fronts
+
+
+def unit_costs(case_rows):
+    """Each method's time per unit of work, medians over the case's grid points: the LGH's build per input
+    light, light pass per rasterized fragment, shadow rays per ray; the light tree's build per node (2N for N
+    leaves) and a lightcut sample (one descent, one shading, one shadow ray)."""
+    def med(values):
+        values = [x for x in values if x is not None and math.isfinite(x)]
+        return float(np.median(values)) if values else None
+
+    def col(r, name):
+        return number(r.get(name, ""))
+
+    lgh = [r for r in case_rows if r["method"] == "lgh" and r["series"] == "grid"]
+    rtslc = [r for r in case_rows if r["method"] == "rtslc" and r["series"] == "grid"]
+    costs = {}
+    if lgh:
+        pixels = lambda r: col(r, "width") * col(r, "height")
+        costs["lgh_build_ns"] = med([col(r, "build_ms") * 1e6 / col(r, "input_lights") for r in lgh
+                                     if col(r, "build_ms") and col(r, "input_lights")])
+        costs["fragment_ns"] = med([col(r, "light_pass_ms") * 1e6 / (col(r, "fragments_per_pixel") * pixels(r))
+                                    for r in lgh if col(r, "light_pass_ms") and col(r, "fragments_per_pixel")])
+        costs["shadow_ray_us"] = med([col(r, "shadow_rays_ms") * 1e3 / (col(r, "shadow_samples") * pixels(r))
+                                      for r in lgh if col(r, "shadow_rays_ms") and col(r, "shadow_samples")])
+    if rtslc:
+        pixels = lambda r: col(r, "width") * col(r, "height")
+        n = col(rtslc[0], "input_lights")
+        costs["tree_node_ns"] = med([col(r, "build_ms") * 1e6 / (2 * col(r, "input_lights")) for r in rtslc
+                                     if col(r, "build_ms") and col(r, "input_lights")])
+        costs["lightcut_sample_us"] = med([col(r, "rtslc_sampling_ms") * 1e3 / (col(r, "shadow_samples") * pixels(r))
+                                           for r in rtslc if col(r, "rtslc_sampling_ms") and col(r, "shadow_samples")])
+        costs["tree_depth"] = math.log2(n) if n else None
+    return costs
 
 
 def rtslc_label(row):
@@ -610,6 +721,21 @@ def summary(results, rows, info):
                 add(f"| {rtslc_label(r)} | {fmt_ms(t)} | {e:.3f} | {fmt_ms(number(r.get('rtslc_cuts_ms')))} | "
                     f"{fmt_ms(number(r.get('rtslc_sampling_ms')))} |")
             add("")
+            for measure, name in (("rmse", "relative RMSE"), ("mae", "relative MAE")):
+                c = sh["curves"].get(measure)
+                if not c:
+                    continue
+                text = f"The fronts as curves ({name}; log error against log time, compared where both reach): "
+                if "equal_time" in c:
+                    et = c["equal_time"]
+                    text += (f"LGH / lightcuts error at equal time median {et['median']:.2f}x, range {et['min']:.2f}-"
+                             f"{et['max']:.2f}x over {fmt_ms(et['from_ms'])}-{fmt_ms(et['to_ms'])} ms")
+                if "equal_error" in c:
+                    ee = c["equal_error"]
+                    text += ("; " if "equal_time" in c else "") + (
+                        f"the LGH's speed-up at equal error (lightcuts' time / LGH's) median {ee['median']:.2f}x, "
+                        f"range {ee['min']:.2f}-{ee['max']:.2f}x over errors {ee['to']:.3f}-{ee['from']:.3f}")
+                add(text + ".\n")
             v = sh["versus_rtslc"]
             if v:
                 ratios = [x["ratio"] for x in v]
@@ -627,14 +753,54 @@ def summary(results, rows, info):
                 add(f"Equal time, {kind}, {res['baselines'][method]['legend']} (its error / the best LGH error in no more "
                     "time): " + ", ".join(f"M={x['M']:,.0f} at {fmt_ms(x['time'])} ms: {x['uniform']:.3f} / {x['lgh']:.3f} "
                                           f"= {x['factor']:.2f}x" for x in entries) + ".\n")
+    costs = [(scene, vpls, unit_costs(next(iter(kinds.values()))["rows"])) for (scene, vpls), kinds in cases.items()]
+    if any(c for _, _, c in costs):
+        add("Cost per unit of work on this device (medians over the grid points; pixels: the image's, W x H), so "
+            "that the times can be re-weighted for another device:\n")
+        add("| scene, VPLs | LGH build, ns per input light | light pass, ns per rasterized fragment | shadow rays "
+            "(targets + rays), us per ray | light tree build, ns per node | lightcut sample (descent of ~log2 N "
+            "nodes, shading, ray), us | tree depth log2 N |")
+        add("|---|---:|---:|---:|---:|---:|---:|")
+        for scene, vpls, c in costs:
+            def v(key, digits=2):
+                return f"{c[key]:.{digits}f}" if c.get(key) is not None else "-"
+            add(f"| {scene}, {vpls // 1000}K | {v('lgh_build_ns', 0)} | {v('fragment_ns', 1)} | {v('shadow_ray_us')} | "
+                f"{v('tree_node_ns', 0)} | {v('lightcut_sample_us')} | {v('tree_depth', 1)} |")
+        add("")
+    curves = [(scene, vpls, kinds["shadowed"]["curves"]) for (scene, vpls), kinds in cases.items()
+              if kinds.get("shadowed", {}).get("curves")]
+    if curves:
+        add("LGH or light tree, the fronts as curves (shadowed; log error against log time, each compared only where "
+            "both fronts reach; below 1 at equal time and above 1 at equal error: the LGH is better):\n")
+        add("| scene, VPLs | time range both cover, ms | LGH / lightcuts error at equal time, RMSE | the same, MAE | "
+            "LGH speed-up at equal error, RMSE | the same, MAE |")
+        add("|---|---|---|---|---|---|")
+
+        def cell(c, key):
+            x = (c or {}).get(key)
+            return f"{x['median']:.2f}x ({x['min']:.2f}-{x['max']:.2f})" if x else "no overlap"
+
+        for scene, vpls, c in curves:
+            et = (c.get("rmse") or {}).get("equal_time")
+            span = f"{fmt_ms(et['from_ms'])}-{fmt_ms(et['to_ms'])}" if et else "-"
+            add(f"| {scene}, {vpls // 1000}K | {span} | {cell(c.get('rmse'), 'equal_time')} | "
+                f"{cell(c.get('mae'), 'equal_time')} | {cell(c.get('rmse'), 'equal_error')} | "
+                f"{cell(c.get('mae'), 'equal_error')} |")
+        add("")
     return "\n".join(lines)
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("csv", help="sweep.csv written by lgh-bench sweep")
+    parser.add_argument("csv", nargs="?", help="sweep.csv written by lgh-bench sweep")
     parser.add_argument("--out", help="output folder (default: the CSV's folder)")
+    parser.add_argument("--self-test", action="store_true", help="check the curve comparison on known fronts")
     args = parser.parse_args()
+    if args.self_test:
+        check_curves()
+        return
+    if not args.csv:
+        parser.error("the sweep.csv to plot is missing")
     if not os.path.isfile(args.csv):
         sys.exit(f"plot_sweep.py: {args.csv}: no such file (run lgh-bench sweep first)")
     csv_dir = os.path.dirname(os.path.abspath(args.csv))
