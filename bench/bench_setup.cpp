@@ -95,4 +95,6 @@ double lightcutsMs(const FrameStats& stats) {
          stats.passMs(passes::kIrradianceFilter);
 }
 
+double indirectMs(const FrameStats& stats) { return lightPassMs(stats) + shadowMs(stats) + lightcutsMs(stats); }
+
 }  // namespace lgh::bench

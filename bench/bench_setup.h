@@ -88,5 +88,7 @@ double lightPassMs(const FrameStats& stats);
 double shadowMs(const FrameStats& stats);
 // The stochastic lightcuts' frame without its tree build: cuts, sampling, irradiance filter.
 double lightcutsMs(const FrameStats& stats);
+// The indirect method's passes, whichever ran: the LGH's (lightPassMs + shadowMs) or the lightcuts'.
+double indirectMs(const FrameStats& stats);
 
 }  // namespace lgh::bench

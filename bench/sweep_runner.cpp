@@ -124,30 +124,24 @@ FrameStats SweepRunner::timedFrame(BenchRenderer& bench, Measurement& m, int fra
   return stats;
 }
 
-std::vector<double> SweepRunner::measureBuild(const Renderer& renderer) {
-  // The hierarchy over the renderer's S0, built again (the Renderer builds it only when S0 changes): in
-  // a frame whose lights move, this is paid every frame. Same options as the renderer's build.
+std::vector<double> SweepRunner::measureStructureBuild(const Renderer& renderer, bool lightTree) {
+  // Built again over the renderer's S0 (the Renderer builds it only when S0 changes): in a frame whose
+  // lights move, this is paid every frame. Same options as the renderer's build.
   const LghBuildOptions o = renderer.buildOptions();
-  std::vector<double> samples;
+  const InputLights& in = renderer.inputLights();
   GpuHierarchy hierarchy;
-  const InputLights& in = renderer.inputLights();
-  for (int r = 0; r < options_.repeats; ++r) {
-    double ms = 0;
-    sampler_.sample([&] { ms = timedMs([&] { buildPass_.execute(in.lights, in.count, o, hierarchy); }); });
-    samples.push_back(ms);
-  }
-  return samples;
-}
-
-std::vector<double> SweepRunner::measureTreeBuild(const Renderer& renderer) {
-  // As measureBuild: the tree over the renderer's S0 built again, what a frame whose lights move pays.
-  std::vector<double> samples;
   GpuLightTree tree;
-  const InputLights& in = renderer.inputLights();
-  treePass_.execute(in.lights, in.count, tree);  // warm-up: the shaders compile at their first dispatch
+  auto build = [&] {
+    if (lightTree)
+      treePass_.execute(in.lights, in.count, tree);
+    else
+      buildPass_.execute(in.lights, in.count, o, hierarchy);
+  };
+  build();  // warm-up: the shaders compile at their first dispatch
+  std::vector<double> samples;
   for (int r = 0; r < options_.repeats; ++r) {
     double ms = 0;
-    sampler_.sample([&] { ms = timedMs([&] { treePass_.execute(in.lights, in.count, tree); }); });
+    sampler_.sample([&] { ms = timedMs(build); });
     samples.push_back(ms);
   }
   return samples;
@@ -173,68 +167,45 @@ void SweepRunner::compileVariants(BenchRenderer& bench, const RenderSettings& ba
     }
 }
 
-Measurement SweepRunner::measureLgh(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point,
-                                    double buildMs, const reference::ReferenceImage* ref, const CaseImages* images) {
+// The LGH's points: time = the hierarchy's build + split + light pass + resolve + shadow targets, rays and
+// filter (unshadowed: without the last three); error = its irradiance (times its filtered visibility).
+// The lightcuts' points: time = the tree's build + cuts + sampling + irradiance filter; error = their
+// shadowed irradiance (filtered when the point says so). Both against the reference.
+Measurement SweepRunner::measurePoint(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point,
+                                      double structureMs, const reference::ReferenceImage* ref,
+                                      const CaseImages* images) {
   Measurement m;
-  m.method = methods::kLgh;
+  m.method = point.lightcuts ? methods::kRtslc : methods::kLgh;
   m.point = point;
   bench.renderer().restartRandomSequence();  // the same frames on any rank (gatherPoints)
   RenderSettings s = point.applied(base);
   m.settings = s;
-  m.buildMs = buildMs;
-  // Untimed: the fragment counter (its atomics would be timed too); also the warm-up.
-  s.lightPass.overdraw = true;
+  m.buildMs = structureMs;
+  // Untimed: the LGH's fragment counter (its atomics would be timed too); also the warm-up.
+  s.lightPass.overdraw = !point.lightcuts;
   m.lights = bench.render(s).lights;
   s.lightPass.overdraw = false;
   bench.renderer().setSettings(s);
+  const bool shadowed = point.lightcuts || point.k > 0;
   for (int r = 0; r < options_.repeats; ++r) {
     const FrameStats stats = timedFrame(bench, m, point.frames);
     if (stats.nonFinitePixels > 0)
-      fail(std::to_string(stats.nonFinitePixels) + " NaN/Inf pixels at " + settingsLabel(point));
+      fail(std::to_string(stats.nonFinitePixels) + " NaN/Inf pixels at " + m.method + " " + settingsLabel(point));
     m.addPassTimes(stats);
-    const double lightPass = lightPassMs(stats);
-    m.timeUnshadowedMs.push_back(buildMs + lightPass);
-    if (point.k > 0) m.timeMs.push_back(buildMs + lightPass + shadowMs(stats));
-    m.frameMs.push_back(buildMs + stats.totalMs());
+    if (!point.lightcuts) m.timeUnshadowedMs.push_back(structureMs + lightPassMs(stats));
+    if (shadowed) m.timeMs.push_back(structureMs + indirectMs(stats));
+    m.frameMs.push_back(structureMs + stats.totalMs());
     if (!ref) continue;
+    // The lightcuts' irradiance is shadowed already: their visibility reads 1.
     const ImageRGBA irradiance = bench.renderer().readImage(Aov::Irradiance);
     const ImageRGBA visibility = bench.renderer().readImage(Aov::Visibility);
-    m.addUnshadowedError(unshadowedError(*ref, irradiance));
-    if (point.k > 0 && !ref->shadowed.empty()) {
+    if (!point.lightcuts) m.addUnshadowedError(unshadowedError(*ref, irradiance));
+    if (shadowed && !ref->shadowed.empty()) {
       m.addShadowedError(shadowedError(*ref, irradiance, &visibility));
-      m.rmseExactRatio.push_back(exactRatioError(*ref, irradiance).rmse);
+      if (!point.lightcuts) m.rmseExactRatio.push_back(exactRatioError(*ref, irradiance).rmse);
     }
     if (r == options_.repeats - 1 && images)
-      images->write(m, fileLabel(point), irradiance, point.k > 0 ? &visibility : nullptr);
-  }
-  return m;
-}
-
-// A point of the stochastic lightcuts: time = its tree build (measureTreeBuild, as the LGH's points count
-// the LGH build) + cuts + sampling + irradiance filter; error = its shadowed irradiance (filtered when the
-// point says so) against the reference.
-Measurement SweepRunner::measureLightcuts(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point,
-                                          double treeBuildMs, const reference::ReferenceImage* ref,
-                                          const CaseImages* images) {
-  Measurement m;
-  m.method = methods::kRtslc;
-  m.point = point;
-  bench.renderer().restartRandomSequence();
-  const RenderSettings s = point.applied(base);
-  m.settings = s;
-  m.buildMs = treeBuildMs;
-  m.lights = bench.render(s).lights;  // warm-up (and the tree, when the last point was the LGH's)
-  for (int r = 0; r < options_.repeats; ++r) {
-    const FrameStats stats = timedFrame(bench, m, point.frames);
-    if (stats.nonFinitePixels > 0)
-      fail(std::to_string(stats.nonFinitePixels) + " NaN/Inf pixels at rtslc " + settingsLabel(point));
-    m.addPassTimes(stats);
-    m.timeMs.push_back(treeBuildMs + lightcutsMs(stats));
-    m.frameMs.push_back(treeBuildMs + stats.totalMs());
-    if (!ref) continue;
-    const ImageRGBA irradiance = bench.renderer().readImage(Aov::Irradiance);  // shadowed already
-    if (!ref->shadowed.empty()) m.addShadowedError(shadowedError(*ref, irradiance, nullptr));
-    if (r == options_.repeats - 1 && images) images->write(m, fileLabel(point), irradiance, nullptr);
+      images->write(m, fileLabel(point), irradiance, shadowed ? &visibility : nullptr);
   }
   return m;
 }
@@ -494,10 +465,10 @@ Case SweepRunner::runCase(const SceneGpu& gpu, const reference::OcclusionScene& 
                   [&](size_t i) { return glm::vec3(albedo.pixels[i]); });
   }
 
-  c.buildMs = measureBuild(renderer);
+  c.buildMs = measureStructureBuild(renderer, false);
   const double buildMs = spreadOf(c.buildMs).median;
   if (std::any_of(points_.begin(), points_.end(), [](const PointSpec& p) { return p.lightcuts; }))
-    c.treeBuildMs = measureTreeBuild(renderer);
+    c.treeBuildMs = measureStructureBuild(renderer, true);
   const double treeBuildMs = c.treeBuildMs.empty() ? kNaN : spreadOf(c.treeBuildMs).median;
   tick();
   compileVariants(bench, base);
@@ -506,8 +477,7 @@ Case SweepRunner::runCase(const SceneGpu& gpu, const reference::OcclusionScene& 
     if (!mine(i)) continue;
     const PointSpec& point = points_[i];
     const CaseImages* pointImages = writeImages ? &images : nullptr;
-    Measurement m = point.lightcuts ? measureLightcuts(bench, base, point, treeBuildMs, &ref, pointImages)
-                                    : measureLgh(bench, base, point, buildMs, &ref, pointImages);
+    Measurement m = measurePoint(bench, base, point, point.lightcuts ? treeBuildMs : buildMs, &ref, pointImages);
     m.series = "grid";
     measured.emplace_back(i, std::move(m));
     tick();
@@ -536,10 +506,10 @@ Case SweepRunner::runScaling(const SceneGpu& gpu, const SceneSpec& spec) {
     BenchRenderer bench(gpu, base);
     const FrameStats first = bench.renderToVplTarget(base, target);
     const size_t inputLights = first.lights.inputLights;
-    const double buildMs = spreadOf(measureBuild(bench.renderer())).median;
+    const double buildMs = spreadOf(measureStructureBuild(bench.renderer(), false)).median;
     std::vector<Measurement> rows;
     for (int n : {1, 4}) {
-      rows.push_back(measureLgh(bench, base, PointSpec{1.0f, 1, n, 4, true}, buildMs, nullptr, nullptr));
+      rows.push_back(measurePoint(bench, base, PointSpec{1.0f, 1, n, 4, true}, buildMs, nullptr, nullptr));
       rows.back().series = "scaling";
       tick();
     }

@@ -56,13 +56,13 @@ class SweepRunner {
   class Baselines;    // the baselines of one case
 
   RenderSettings baseSettings(const SceneSpec& spec) const;
-  std::vector<double> measureBuild(const Renderer& renderer);
-  std::vector<double> measureTreeBuild(const Renderer& renderer);  // the lightcuts' light tree, as measureBuild
+  // The structure a method draws over the renderer's S0 (the LGH's hierarchy, the lightcuts' light tree),
+  // built again `repeats` times.
+  std::vector<double> measureStructureBuild(const Renderer& renderer, bool lightTree);
   void compileVariants(BenchRenderer& bench, const RenderSettings& base);
-  Measurement measureLgh(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point, double buildMs,
-                         const reference::ReferenceImage* ref, const CaseImages* images);
-  Measurement measureLightcuts(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point,
-                               double treeBuildMs, const reference::ReferenceImage* ref, const CaseImages* images);
+  // A grid point of either method: time = its structure's build + its indirect passes, error against `ref`.
+  Measurement measurePoint(BenchRenderer& bench, const RenderSettings& base, const PointSpec& point, double structureMs,
+                           const reference::ReferenceImage* ref, const CaseImages* images);
   Measurement measureBruteForce(BenchRenderer& bench, const RenderSettings& base, size_t lights,
                                 const reference::ReferenceImage* ref, const char* series);
   // One timed frame with the renderer's settings, after frames - 1 untimed ones accumulated from a
