@@ -34,26 +34,15 @@ layout(std140, binding = LGH_UBO_PASS) uniform IrradianceFilter { IrradianceFilt
 
 float framesAt(ivec2 pixel) { return filtering.hasMoments != 0u ? max(texelFetch(moments, pixel, 0).a, 1.0) : 1.0; }
 
-// The geometric weight of neighbour q for the spatial moments: normal and tangent-plane distance (no kernel).
-float surfaceWeight(Surface s, ivec2 q, float footprint) {
-  if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(frame.resolution.xy)))) return 0.0;
-  vec4 qPosition = texelFetch(gPosition, q, 0);
-  if (qPosition.w == 0.0) return 0.0;
-  float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * filtering.planeSigma);
-  return pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), filtering.normalPower) *
-         exp(-0.5 * plane * plane);
-}
-
 // The variance of one pixel's luminance, from its neighbours on the same surface: weighted moments
 // mu2 - mu1^2, times n / (n - 1) for the effective count n = (sum w)^2 / sum w^2 (unbiased for independent
 // pixels of one mean; 0 where the pixel has no neighbour to compare with).
 float spatialVariance(Surface s, ivec2 pixel) {
-  float footprint = atrousFootprint(s, 1);
   float weightSum = 0.0, squaredWeights = 0.0, first = 0.0, second = 0.0;
   for (int dy = -3; dy <= 3; ++dy) {
     for (int dx = -3; dx <= 3; ++dx) {
       ivec2 q = pixel + ivec2(dx, dy);
-      float w = surfaceWeight(s, q, footprint);
+      float w = surfaceSimilarity(s, q, filtering.normalPower, filtering.planeSigma);
       if (!(w > 0.0)) continue;
       float l = luminance(texelFetch(signalIn, q, 0).rgb);
       weightSum += w;

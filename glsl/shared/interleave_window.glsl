@@ -19,23 +19,26 @@ ivec2 interleaveHalfWidths(uint n, float frames) {
   return ivec2(frames >= float(n) ? 0 : half_, half_);
 }
 
-// The weight of the neighbour at `offset` (|offset| within the half-widths) for the surface s:
-// the box's end weights times max(0, n.n')^normalPower times the Gaussian of the neighbour's distance
-// from s's tangent plane in pixel footprints (sigma planeSigma); 0 off the image or on background.
-float interleaveTapWeight(Surface s, ivec2 pixel, ivec2 offset, uint n, ivec2 halfWidths, float normalPower,
-                          float planeSigma) {
-  ivec2 q = pixel + offset;
+// How much the surface at pixel q looks like s: max(0, n.n')^normalPower times the Gaussian of q's
+// distance from s's tangent plane in pixel footprints (sigma planeSigma); 0 off the image or on background.
+float surfaceSimilarity(Surface s, ivec2 q, float normalPower, float planeSigma) {
   if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(frame.resolution.xy)))) return 0.0;
   vec4 qPosition = texelFetch(gPosition, q, 0);
   if (qPosition.w == 0.0) return 0.0;
+  float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30);
+  float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
+  return pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) * exp(-0.5 * plane * plane);
+}
+
+// The weight of the neighbour at `offset` (|offset| within the half-widths) for the surface s: the box's
+// end weights (1, 1/2 or 1/4: exact factors) times its surface similarity.
+float interleaveTapWeight(Surface s, ivec2 pixel, ivec2 offset, uint n, ivec2 halfWidths, float normalPower,
+                          float planeSigma) {
   bool even = (n & 1u) == 0u;
   int half_ = int(n / 2u);
   float window = (even && halfWidths.x == half_ && abs(offset.x) == half_ ? 0.5 : 1.0) *
                  (even && halfWidths.y == half_ && abs(offset.y) == half_ ? 0.5 : 1.0);
-  float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30);
-  float plane = abs(dot(s.normal, qPosition.xyz - s.position)) / (footprint * planeSigma);
-  return window * pow(max(0.0, dot(s.normal, texelFetch(gNormal, q, 0).xyz)), normalPower) *
-         exp(-0.5 * plane * plane);
+  return window * surfaceSimilarity(s, pixel + offset, normalPower, planeSigma);
 }
 
 #endif
