@@ -22,15 +22,8 @@ void LghIndirect::allocate(const RenderSettings& settings) {
     return gl::Texture2D({owner, name, kImageSize}, w, h, format);
   };
   // The old set goes before the new is allocated: a switch holds one set at a time.
-  tiles_ = {};
-  for (gl::Texture2D* t : {&irradiance_, &fragmentCounts_, &rawRatio_, &sampledIrradiance_, &visibility_}) *t = {};
-  if (!shadowed()) {
-    shadowSlots_ = {};
-    shadowTargets_ = {};
-    shadowTargetsPass_.release();
-    shadowRayPass_.release();
-    shadowFilterPass_.release();
-  }
+  freeTargets();
+  if (!shadowed()) releaseShadowSampling();
   const bool overdraw = settings.lightPass.overdraw, accumulating = settings.accumulation.enabled;
   if (interleaved()) tiles_ = Tiles(TileLayout::of(settings.lightPass.interleave, w, h), overdraw);
   irradiance_ = make(passes::kLightPass, "irradiance", GL_RGBA32F);
@@ -50,14 +43,22 @@ void LghIndirect::allocate(const RenderSettings& settings) {
   if (shadowed()) visibility_ = make(passes::kShadowFilter, "visibility", GL_RGBA32F);
 }
 
-void LghIndirect::release(LightBuilds& builds) {
+void LghIndirect::freeTargets() {
   tiles_ = {};
   for (gl::Texture2D* t : {&irradiance_, &fragmentCounts_, &rawRatio_, &sampledIrradiance_, &visibility_}) *t = {};
+}
+
+void LghIndirect::releaseShadowSampling() {
   shadowSlots_ = {};
   shadowTargets_ = {};
   shadowTargetsPass_.release();
   shadowRayPass_.release();
   shadowFilterPass_.release();
+}
+
+void LghIndirect::release(LightBuilds& builds) {
+  freeTargets();
+  releaseShadowSampling();
   lightPass_.release();
   hierarchy_ = {};
   builds.freedHierarchy();
@@ -66,12 +67,12 @@ void LghIndirect::release(LightBuilds& builds) {
 bool LghIndirect::updateStructure(const IndirectFrame& frame, const InputLightKey& lights, LightBuilds& builds) {
   const LghBuildOptions options = buildOptions(frame.scene, frame.settings);
   // Brute force draws every input light: no hierarchy is held.
-  const bool draws = !frame.settings.lightPass.bruteForce;
-  if (!draws && hierarchy_.gridLightCount > 0) {
+  if (frame.settings.lightPass.bruteForce) {
     hierarchy_ = {};
     builds.freedHierarchy();
+    return false;
   }
-  if (!builds.plan(lights, options.levels, draws).hierarchy) return false;
+  if (!builds.plan(lights, options.levels, true).hierarchy) return false;
   frame.timed(passes::kLghBuild,
               [&] { buildPass_.execute(frame.lights.lights, frame.lights.count, options, hierarchy_); });
   builds.builtHierarchy(options.levels);

@@ -41,6 +41,9 @@ class LghIndirect final : public IndirectLight {
   const ShadowSlots& shadowSlots() const { return shadowSlots_; }  // the last frame's selection
 
  private:
+  // The targets freed (allocate() makes the new set after); the shadow sampling's slots, targets and passes freed.
+  void freeTargets();
+  void releaseShadowSampling();
   bool shadowed() const { return allocated_.shadows.samples > 0; }
   bool interleaved() const { return allocated_.lightPass.interleave > 1; }
   // Shadow rays aim at input lights drawn from the selected grid lights' clusters.
