@@ -314,9 +314,11 @@ def unit_costs(case_rows):
 
     lgh = [r for r in case_rows if r["method"] == "lgh" and r["series"] == "grid"]
     rtslc = [r for r in case_rows if r["method"] == "rtslc" and r["series"] == "grid"]
+    def pixels(r):
+        return col(r, "width") * col(r, "height")
+
     costs = {}
     if lgh:
-        pixels = lambda r: col(r, "width") * col(r, "height")
         costs["lgh_build_ns"] = med([col(r, "build_ms") * 1e6 / col(r, "input_lights") for r in lgh
                                      if col(r, "build_ms") and col(r, "input_lights")])
         costs["fragment_ns"] = med([col(r, "light_pass_ms") * 1e6 / (col(r, "fragments_per_pixel") * pixels(r))
@@ -324,7 +326,6 @@ def unit_costs(case_rows):
         costs["shadow_ray_us"] = med([col(r, "shadow_rays_ms") * 1e3 / (col(r, "shadow_samples") * pixels(r))
                                       for r in lgh if col(r, "shadow_rays_ms") and col(r, "shadow_samples")])
     if rtslc:
-        pixels = lambda r: col(r, "width") * col(r, "height")
         n = col(rtslc[0], "input_lights")
         costs["tree_node_ns"] = med([col(r, "build_ms") * 1e6 / (2 * col(r, "input_lights")) for r in rtslc
                                      if col(r, "build_ms") and col(r, "input_lights")])
