@@ -15,6 +15,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/bindings.h"
 #include "shared/bvh_traverse.glsl"
+#include "shared/color.glsl"
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
 #include "shared/lgh_shading.glsl"
@@ -30,6 +31,12 @@ layout(std430, binding = LGH_BINDING_PASS1) readonly buffer Nodes { GpuLightTree
 layout(std430, binding = LGH_BINDING_PASS2) readonly buffer Bounds { LghBoundsResult bounds; };
 layout(std430, binding = LGH_BINDING_PASS3) buffer Cuts { uint cuts[]; };  // kMaxCutNodes per block, kNoCutNode: unused
 layout(rgba32f, binding = LGH_IMAGE_RTSLC_SHADOWED) uniform writeonly image2D shadowedOut;
+// The ratio form's (rtslc.ratioOutputs): the same samples unshadowed, and the visibility ratio as the shadow
+// filter reads the LGH's (shadowed / unshadowed luminance, 0, unshadowed luminance, 1 frame) with the
+// unshadowed luminance apart as the irradiance its samples were drawn against.
+layout(rgba32f, binding = LGH_IMAGE_RTSLC_UNSHADOWED) uniform writeonly image2D unshadowedOut;
+layout(rgba32f, binding = LGH_IMAGE_RTSLC_RATIO) uniform writeonly image2D ratioOut;
+layout(r32f, binding = LGH_IMAGE_RTSLC_SAMPLED) uniform writeonly image2D sampledOut;
 #include "shared/light_tree.glsl"
 
 layout(std140, binding = LGH_UBO_PASS) uniform Rtslc { RtslcUniforms rtslc; };
@@ -80,7 +87,7 @@ void selectCut(uvec2 block, ivec2 size) {
 
 void sampleLights(ivec2 pixel) {
   Surface s = loadSurface(pixel);
-  vec3 shadowed = vec3(0.0);
+  vec3 shadowed = vec3(0.0), unshadowed = vec3(0.0);
   if (s.valid && rtslc.leafCount > 0u) {
     uvec2 block = uvec2(pixel) / rtslc.blockSize;
     uint base = (block.y * rtslc.blocksPerRow + block.x) * kMaxCutNodes;
@@ -106,6 +113,7 @@ void sampleLights(ivec2 pixel) {
                                  rtslc.clampDistance) /
                probability;
       if (f == vec3(0.0)) continue;
+      unshadowed += f;
       // Stop short of the light by a relative margin, as shadow_rays.comp: VPLs sit on surfaces.
       vec3 toLight = l.position - origin;
       float rayLength = length(toLight);
@@ -113,8 +121,15 @@ void sampleLights(ivec2 pixel) {
       if (!blocked) shadowed += f;
     }
     shadowed *= float(groupSize);
+    unshadowed *= float(groupSize);
   }
   imageStore(shadowedOut, pixel, vec4(shadowed, 1.0));
+  if (rtslc.ratioOutputs != 0u) {
+    float u = luminance(unshadowed), ratio = u > 0.0 ? clamp(luminance(shadowed) / u, 0.0, 1.0) : 1.0;
+    imageStore(unshadowedOut, pixel, vec4(unshadowed, 1.0));
+    imageStore(ratioOut, pixel, vec4(ratio, 0.0, u, 1.0));
+    imageStore(sampledOut, pixel, vec4(u));
+  }
 }
 
 void main() {

@@ -76,7 +76,8 @@ void Renderer::setSettings(const RenderSettings& settings) {
 
 bool Renderer::Configuration::operator==(const Configuration& o) const {
   return width == o.width && height == o.height && interleave == o.interleave && method == o.method &&
-         shadowed == o.shadowed && overdraw == o.overdraw && accumulating == o.accumulating;
+         rtslcDenoiser == o.rtslcDenoiser && shadowed == o.shadowed && overdraw == o.overdraw &&
+         accumulating == o.accumulating;
 }
 
 Renderer::Configuration Renderer::configuration() const {
@@ -85,6 +86,7 @@ Renderer::Configuration Renderer::configuration() const {
   c.height = settings_.image.height;
   c.interleave = settings_.lightPass.interleave;
   c.method = settings_.indirectMethod;
+  c.rtslcDenoiser = settings_.rtslc.denoiser;
   c.shadowed = settings_.shadows.samples > 0;
   c.overdraw = settings_.lightPass.overdraw;
   c.accumulating = accumulating();

@@ -75,6 +75,7 @@ class Renderer {
   struct Configuration {
     int width = 0, height = 0, interleave = 1;
     IndirectMethod method = IndirectMethod::None;
+    RtslcDenoiser rtslcDenoiser = RtslcDenoiser::Shadowed;  // the ratio form has targets of its own
     bool shadowed = false, overdraw = false, accumulating = false;
     bool operator==(const Configuration& o) const;
     bool operator!=(const Configuration& o) const { return !(*this == o); }

@@ -43,6 +43,10 @@ std::ostream& operator<<(std::ostream& out, IndirectMethod method) {
   return out << choiceName(method, kIndirectMethodChoices);
 }
 
+std::ostream& operator<<(std::ostream& out, RtslcDenoiser denoiser) {
+  return out << choiceName(denoiser, kRtslcDenoiserChoices);
+}
+
 void setSetting(RenderSettings& settings, const std::string& name, const std::string& value) {
   bool found = false;
   std::string names;

@@ -99,6 +99,11 @@ struct AccumulationSettings {
 
 // The peer method, real-time stochastic lightcuts (RtslcPass; docs/design.md §12): indirect light from the
 // same S0 through a light tree instead of the LGH, shadowed sample by sample.
+// How the lightcuts are denoised (docs/measurements.md, "The lightcuts' denoiser"): their shadowed
+// irradiance by SVGF's variance-guided filter, or in ratio form, the same samples' unshadowed sum by it and
+// their visibility ratio by the LGH's shadow filter, multiplied. In kRtslcDenoiserChoices' order.
+enum class RtslcDenoiser { Shadowed, Ratio };
+
 struct RtslcSettings {
   int samples = 8;            // n: light samples (and shadow rays) per pixel: a cut of n m^2 nodes (the paper's spp)
   int blockSize = 8;          // B: pixels per side of the blocks that share a cut (1: per-pixel cuts)
@@ -111,6 +116,7 @@ struct RtslcSettings {
   float filterSigma = 16.0f;
   float filterNormalPower = 4.0f;
   float filterPlaneSigma = 1.0f;
+  RtslcDenoiser denoiser = RtslcDenoiser::Shadowed;
 };
 
 // How the indirect light is made: not at all (emission and direct light only), through the LGH, or by the
@@ -176,6 +182,7 @@ struct SettingInfo {
 inline constexpr const char* kShadowEstimatorChoices = "converging|paper|uniform";
 inline constexpr const char* kToneMapChoices = "aces|reinhard|clamp";
 inline constexpr const char* kIndirectMethodChoices = "none|lgh|rtslc";
+inline constexpr const char* kRtslcDenoiserChoices = "shadowed|ratio";
 
 // visit(value&, SettingInfo) for each setting, in the order users see them.
 template <typename Settings, typename Visitor>
@@ -286,6 +293,9 @@ void visitSettings(Settings& s, Visitor&& visit) {
                     1, 4});
   visit(rtslc.errorLimit,
         SettingInfo{"rtslc-error-limit", "lightcuts: the cut's distance floor, share of the lights' extent", 0, 1});
+  visit(rtslc.denoiser,
+        SettingInfo{"rtslc-denoiser", "lightcuts: filter the shadowed irradiance, or its ratio to the unshadowed apart"}
+            .oneOf(kRtslcDenoiserChoices));
   visit(rtslc.filterSigma, SettingInfo{"rtslc-filter-sigma",
                                        "lightcuts' denoiser: luminance stop in standard deviations (SVGF)", 0.01, 1000}
                                .keepingHistory());
@@ -331,5 +341,6 @@ Enum choiceValue(const std::string& name, const char* choices) {
 }
 // The method's choice name (lgh, rtslc, none): what settings keys, CSVs and messages print.
 std::ostream& operator<<(std::ostream& out, IndirectMethod method);
+std::ostream& operator<<(std::ostream& out, RtslcDenoiser denoiser);
 
 }  // namespace lgh

@@ -66,6 +66,9 @@
 #define LGH_IMAGE_SHADOW_SAMPLED_IRRADIANCE 1  // shadow rays: the irradiance T is compared with
 #define LGH_IMAGE_FILTER_OUT 0                 // a-trous
 #define LGH_IMAGE_RTSLC_SHADOWED 0             // lightcuts: the shadowed irradiance estimate
+#define LGH_IMAGE_RTSLC_UNSHADOWED 1           // lightcuts, ratio form: the same samples unshadowed
+#define LGH_IMAGE_RTSLC_RATIO 2                // lightcuts, ratio form: the raw visibility ratio
+#define LGH_IMAGE_RTSLC_SAMPLED 3              // lightcuts, ratio form: the unshadowed luminance
 #define LGH_IMAGE_COMPOSITE_FINAL 0
 #define LGH_IMAGE_COMPOSITE_INDIRECT 1
 #define LGH_IMAGE_ACCUM_IRRADIANCE 0      // accumulation: in this frame's irradiance, out the accumulated

@@ -38,7 +38,7 @@ GPU_STRUCT(RtslcUniforms) {
   uint blocksPerRow;
   uint interleave;  // m: an m x m group of pixels splits each cut's nodes, x m^2 (1: none)
   uint frameSeed;
-  uint pad0;
+  uint ratioOutputs;  // 1: the ratio form's outputs are written too (the unshadowed sum, the ratio)
 
   float errorLimit;     // the error bound's distance floor, as a share of the lights' box diagonal
   float clampDistance;  // d_c of the light shading, as the LGH's

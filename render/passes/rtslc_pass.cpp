@@ -13,7 +13,7 @@ namespace lgh {
 RtslcPass::RtslcPass()
     : program_(gl::Program::compute("rtslc.comp")), uniforms_(passes::kLightcutSampling, sizeof(gpu::RtslcUniforms)) {}
 
-void RtslcPass::bind(const RtslcInputs& in, const RtslcOptions& options, size_t dispatch) {
+void RtslcPass::bind(const RtslcInputs& in, const RtslcOptions& options, size_t dispatch, bool ratioOutputs) {
   const RtslcSettings& s = options.settings;
   if (s.samples < 1 || s.samples > int(gpu::kMaxCutNodes))
     throw std::invalid_argument("lightcuts: " + std::to_string(s.samples) + " samples (use 1.." +
@@ -44,6 +44,7 @@ void RtslcPass::bind(const RtslcInputs& in, const RtslcOptions& options, size_t 
   u.blocksPerRow = blocksPerRow;
   u.interleave = unsigned(s.interleave);
   u.frameSeed = options.frameSeed;
+  u.ratioOutputs = ratioOutputs ? 1u : 0u;
   u.errorLimit = s.errorLimit;
   u.clampDistance = options.clampDistance;
   uniforms_.upload(std::vector<gpu::RtslcUniforms>{u});
@@ -63,7 +64,7 @@ void RtslcPass::release() {
 
 void RtslcPass::selectCuts(const RtslcInputs& in, const RtslcOptions& options) {
   if (in.tree.leafCount == 0) return;  // no lights: no tree, no cuts
-  bind(in, options, 0);
+  bind(in, options, 0, false);
   const int block = options.settings.blockSize;
   program_.dispatch2D((in.gbuffer.width + block - 1) / block, (in.gbuffer.height + block - 1) / block, {8, 8});
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -73,10 +74,20 @@ void RtslcPass::selectCuts(const RtslcInputs& in, const RtslcOptions& options) {
 void RtslcPass::sample(const RtslcInputs& in, const RtslcOptions& options, const RtslcTargets& out) {
   if (in.tree.leafCount == 0) {  // no lights: no indirect light
     out.shadowed.clear(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    if (out.ratio) {
+      out.unshadowed->clear(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+      out.ratio->clear(glm::vec4(1.0f, 0.0f, 0.0f, 1.0f));
+      out.sampledLuminance->clear(glm::vec4(0.0f));
+    }
     return;
   }
-  bind(in, options, 1);
+  bind(in, options, 1, out.ratio != nullptr);
   out.shadowed.bindImage(LGH_IMAGE_RTSLC_SHADOWED, GL_WRITE_ONLY);
+  if (out.ratio) {
+    out.unshadowed->bindImage(LGH_IMAGE_RTSLC_UNSHADOWED, GL_WRITE_ONLY);
+    out.ratio->bindImage(LGH_IMAGE_RTSLC_RATIO, GL_WRITE_ONLY);
+    out.sampledLuminance->bindImage(LGH_IMAGE_RTSLC_SAMPLED, GL_WRITE_ONLY);
+  }
   program_.dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   gl::checkErrors("lightcut sampling");

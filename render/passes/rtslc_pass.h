@@ -33,6 +33,11 @@ struct RtslcOptions {
 
 struct RtslcTargets {
   gl::Texture2D& shadowed;  // RGBA32F
+  // The ratio form's, written when set (all three or none): the same samples' unshadowed sum (RGBA32F), the
+  // raw ratio as ShadowFilterInputs reads it (RGBA32F), the unshadowed luminance (R32F).
+  gl::Texture2D* unshadowed = nullptr;
+  gl::Texture2D* ratio = nullptr;
+  gl::Texture2D* sampledLuminance = nullptr;
 };
 
 class RtslcPass {
@@ -48,7 +53,7 @@ class RtslcPass {
   const gl::Buffer& cuts() const { return cuts_; }
 
  private:
-  void bind(const RtslcInputs& in, const RtslcOptions& options, size_t dispatch);
+  void bind(const RtslcInputs& in, const RtslcOptions& options, size_t dispatch, bool ratioOutputs);
   gl::Program program_;
   gl::UniformBlocks uniforms_;  // the dispatch's gpu::RtslcUniforms, uploaded before each
   gl::Buffer cuts_;             // gpu::kMaxCutNodes node indices per block
