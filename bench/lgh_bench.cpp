@@ -6,20 +6,21 @@
 //   lgh-bench sweep [--preset readme|smoke --scene S@CAM --alpha ... --csv ...]      (docs/design.md §7: error vs time)
 //   lgh-bench reference --scene S@CAM --vpls 1M [--out ref.exr ...]                 (docs/design.md §13: MPI,
 //   resumable)
-// Under mpiexec / srun (built with MPI: bench/ranks.h) the sweep and the reference share the work among the ranks.
+// Under mpiexec / srun (built with MPI: bench/common/ranks.h) the sweep and the reference share the work among the
+// ranks.
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <iostream>
 #include <vector>
 
-#include "bench/build_bench.h"
-#include "bench/frame_bench.h"
-#include "bench/light_bench.h"
-#include "bench/memory_bench.h"
-#include "bench/ranks.h"
+#include "bench/common/ranks.h"
+#include "bench/engine/build_bench.h"
+#include "bench/engine/frame_bench.h"
+#include "bench/engine/light_bench.h"
+#include "bench/engine/memory_bench.h"
 #ifdef LGH_HAVE_REFERENCE
-#include "bench/reference_bench.h"
-#include "bench/sweep_bench.h"
+#include "bench/reference/reference_bench.h"
+#include "bench/sweep/sweep_bench.h"
 #endif
 
 namespace {
@@ -45,7 +46,7 @@ int run(int argc, char** argv) {
       {lgh::bench::addFrameCommand(app, frameOptions), [&] { return lgh::bench::runFrameBench(frameOptions); }},
       {lgh::bench::addMemoryCommand(app, memoryOptions), [&] { return lgh::bench::runMemoryBench(memoryOptions); }},
   };
-#ifdef LGH_HAVE_REFERENCE  // the sweep needs the Embree reference (bench/reference.h)
+#ifdef LGH_HAVE_REFERENCE  // the sweep needs the Embree reference (bench/reference/reference.h)
   lgh::bench::SweepOptions sweepOptions;
   benchmarks.push_back(
       {lgh::bench::addSweepCommand(app, sweepOptions), [&] { return lgh::bench::runSweepBench(sweepOptions); }});

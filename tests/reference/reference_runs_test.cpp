@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/reference.h"
+#include "bench/reference/reference.h"
 #include "gltf_writer.h"
 
 namespace lgh::test {

@@ -1,4 +1,4 @@
-// The exact CPU reference of the sweep (bench/reference.h: Embree, double precision) against the GL
+// The exact CPU reference of the sweep (bench/reference/reference.h: Embree, double precision) against the GL
 // code path, on a scene small enough for both: the project's Cornell box at 64x36 with ~1K VPLs.
 //  * Unshadowed, it equals the GL brute force (compute sum over every S0 light, and the rasterized
 //    RenderSettings::bruteForce light pass) within 1e-4 relative.
@@ -6,23 +6,23 @@
 //    cases, and the shadowed sums agree with BruteForcePass's shadowed variant.
 //  * A pixel subset computes exactly the full reference's values there; the cache returns what was
 //    stored, and only for the same description.
-//  * In tiles (bench/reference_tiles.h): the tiles cover every pixel once, the reference assembled from
+//  * In tiles (bench/reference/reference_tiles.h): the tiles cover every pixel once, the reference assembled from
 //    tiles (also tiles stored and loaded back) is the one-piece reference bit for bit, and a tile file
 //    that is truncated, corrupt, of another reference, tile or pixel subset is refused.
-#include "bench/reference.h"
+#include "bench/reference/reference.h"
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <numeric>
 
-#include "bench/reference_tiles.h"
+#include "bench/reference/reference_tiles.h"
 #include "gl_test_env.h"
 #include "gltf_writer.h"
 #include "lgh/shading.h"
+#include "render/exact/brute_force_pass.h"
 #include "render/gl/program.h"
 #include "render/image_compare.h"
-#include "render/passes/brute_force_pass.h"
 #include "render/passes/lgh_build_pass.h"
 #include "render/renderer.h"
 #include "render/scene/scene_gpu.h"

@@ -1,7 +1,7 @@
 #pragma once
 // Exact references at a renderer's surfaces, shared by the GL tests that hold its frames to them.
+#include "render/exact/brute_force_pass.h"
 #include "render/image_compare.h"
-#include "render/passes/brute_force_pass.h"
 #include "render/renderer.h"
 #include "render/scene/scene_gpu.h"
 
