@@ -43,6 +43,8 @@ std::ostream& operator<<(std::ostream& out, IndirectMethod method) {
   return out << choiceName(method, kIndirectMethodChoices);
 }
 
+std::ostream& operator<<(std::ostream& out, BvhLayout layout) { return out << choiceName(layout, kBvhLayoutChoices); }
+
 std::ostream& operator<<(std::ostream& out, RtslcDenoiser denoiser) {
   return out << choiceName(denoiser, kRtslcDenoiserChoices);
 }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "render/scene/bvh.h"
 #include "shared/lgh_types.h"
 #include "shared/light_pass_types.h"
 #include "shared/light_tree_types.h"
@@ -126,9 +127,10 @@ enum class IndirectMethod { None, Lgh, Rtslc };
 struct RenderSettings {
   ImageSettings image;
   IndirectMethod indirectMethod = IndirectMethod::Lgh;
-  bool directShadows = true;   // DirectLightPass: one shadow ray per punctual light
-  float clampDistance = 0.0f;  // d_c in metres; 0 = automatic (1e-2 of the scene diagonal)
-  float gpuMemoryLimit = 0;    // MB the engine's GL objects may hold; 0: the device's reported free memory
+  bool directShadows = true;               // DirectLightPass: one shadow ray per punctual light
+  float clampDistance = 0.0f;              // d_c in metres; 0 = automatic (1e-2 of the scene diagonal)
+  float gpuMemoryLimit = 0;                // MB the engine's GL objects may hold; 0: the device's reported free memory
+  BvhLayout bvhLayout = BvhLayout::Wide4;  // the BVH the rays traverse, built when the scene loads (SceneGpu)
   InputLightSettings inputLights;
   HierarchySettings hierarchy;
   LightPassSettings lightPass;
@@ -204,6 +206,8 @@ void visitSettings(Settings& s, Visitor&& visit) {
         SettingInfo{"gpu-memory-limit",
                     "MB the GPU buffers and textures may hold (0: the free memory the device reports)", 0, 1e9}
             .keepingHistory());
+  visit(s.bvhLayout,
+        SettingInfo{"bvh", "node layout of the BVH the rays traverse (when the scene loads)"}.oneOf(kBvhLayoutChoices));
   visit(s.indirectMethod, SettingInfo{"indirect-method",
                                       "lgh (the lighting grid hierarchy), rtslc (stochastic lightcuts, the peer), none"}
                               .forUsers()
@@ -342,5 +346,6 @@ Enum choiceValue(const std::string& name, const char* choices) {
 // The method's choice name (lgh, rtslc, none): what settings keys, CSVs and messages print.
 std::ostream& operator<<(std::ostream& out, IndirectMethod method);
 std::ostream& operator<<(std::ostream& out, RtslcDenoiser denoiser);
+std::ostream& operator<<(std::ostream& out, BvhLayout layout);
 
 }  // namespace lgh

@@ -66,7 +66,7 @@ RenderBench::RenderBench(const RenderBenchOptions& options)
     : path_(chooseRenderScene(options.scene, why_)),
       scene_(loadScene(path_)),
       context_(createContext(options.backend)),
-      gpu_(std::make_unique<SceneGpu>(scene_)),
+      gpu_(std::make_unique<SceneGpu>(scene_, options.settings.bvhLayout)),
       renderer_(std::make_unique<BenchRenderer>(*gpu_, options.settings)) {}
 
 std::string sourceRelative(const std::filesystem::path& path) {

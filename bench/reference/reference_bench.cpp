@@ -92,7 +92,7 @@ int runReferenceBench(const ReferenceBenchOptions& options) {
   std::unique_ptr<gl::Context> context;
   if (ranks.root()) {
     context = createContext(options.backend);
-    const SceneGpu gpu(scene);
+    const SceneGpu gpu(scene, settings.bvhLayout);
     BenchRenderer bench(gpu, settings);
     const FrameStats first = bench.renderToVplTarget(settings, options.vpls);
     const Renderer& renderer = bench.renderer();

@@ -88,7 +88,7 @@ int runSweep(const SweepOptions& options, std::vector<PointSpec> points) {
   runner.setProgress(&progress);
   std::vector<Case> cases;
   for (size_t i = 0; i < specs.size(); ++i) {
-    const SceneGpu gpu(scenes[i]);
+    const SceneGpu gpu(scenes[i], s.bvhLayout);
     const reference::OcclusionScene occlusion(scenes[i].positions, scenes[i].indices);
     for (size_t vpls : options.vpls) cases.push_back(runner.runCase(gpu, occlusion, specs[i], vpls));
     if (!options.scalingVpls.empty() && ranks.root()) cases.push_back(runner.runScaling(gpu, specs[i]));

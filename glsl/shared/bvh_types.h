@@ -1,4 +1,6 @@
-// Flattened BVH as the GPU reads it (std430), written by render/scene/bvh.cpp.
+// Flattened BVH as the GPU reads it (std430), written by render/scene/bvh.cpp in one of two node layouts
+// (gpu::kBvhLayout*): binary nodes (BvhNode) or 4-wide nodes (BvhWideNode), over the same triangles. A
+// shader that traces is compiled for one layout (LGH_BVH_LAYOUT, shared/bvh_traverse.glsl).
 #ifndef LGH_BVH_TYPES_H
 #define LGH_BVH_TYPES_H
 #include "shared/gpu_prelude.h"
@@ -26,6 +28,30 @@ GPU_STRUCT(BvhTriangle) {
   float pad2;
 };
 GPU_CHECK_SIZE(BvhTriangle, 48);
+
+// A 4-wide node: its children's boxes side by side (one slab test for all four), and the children: an
+// inner node's index, a leaf (kBvhLeaf | (count - 1) << kBvhLeafCountShift | first triangle), or
+// kBvhEmptyChild (its box is not read).
+GPU_STRUCT(BvhWideNode) {
+  vec4 lowerX;
+  vec4 upperX;
+  vec4 lowerY;
+  vec4 upperY;
+  vec4 lowerZ;
+  vec4 upperZ;
+  uvec4 children;
+};
+GPU_CHECK_SIZE(BvhWideNode, 112);
+GPU_CHECK_OFFSET(BvhWideNode, children, 96);
+
+GPU_CONST uint kBvhLayoutBinary = 0u;
+GPU_CONST uint kBvhLayoutWide4 = 1u;
+GPU_CONST uint kBvhWidth = 4u;
+GPU_CONST uint kBvhLeaf = 0x80000000u;
+GPU_CONST uint kBvhLeafCountShift = 27u;  // 4 bits: 1-16 triangles
+GPU_CONST uint kBvhLeafFirstMask = 0x07ffffffu;
+GPU_CONST uint kBvhEmptyChild = 0xffffffffu;
+GPU_CONST uint kBvhMaxLeafSize = 16u;
 
 GPU_CONST uint kBvhStackSize = 64u;
 GPU_CONST uint kBvhTriangleAlphaMasked = 1u;

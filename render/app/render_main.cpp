@@ -150,7 +150,7 @@ int run(int argc, char** argv) {
 
   const auto t1 = Clock::now();
   lgh::gl::memory().setLimit(size_t(double(settings.gpuMemoryLimit) * 1e6));  // the scene counts too
-  const lgh::SceneGpu sceneGpu(scene);
+  const lgh::SceneGpu sceneGpu(scene, settings.bvhLayout);
   lgh::Renderer renderer(sceneGpu, settings);
   const double setupMs = msSince(t1);
   const lgh::CameraView view = lgh::makeCameraView(camera, settings.image.width, settings.image.height);

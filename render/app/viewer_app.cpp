@@ -58,7 +58,7 @@ Viewer::Viewer(const Scene& scene, gl::Context& context, const ViewerState& init
       window_(context.window()),
       options_(options),
       state_(initial),
-      scene_(scene),
+      scene_(scene, initial.settings.bvhLayout),
       renderer_(scene_, sizedSettings(context.window(), initial, false)) {
   if (!window_) throw std::logic_error("Viewer needs the window backend's context");
   state_.lights = scene_.lights();

@@ -9,8 +9,7 @@
 namespace lgh {
 
 BruteForcePass::BruteForcePass()
-    : program_(gl::Program::compute("brute_force.comp")),
-      shadowed_(gl::Program::compute("brute_force.comp", {{"LGH_SHADOWED", "1"}})) {
+    : program_(gl::Program::compute("brute_force.comp")), shadowed_("brute_force.comp", {{"LGH_SHADOWED", "1"}}) {
   // llvmpipe ends a shader invocation's loops after 65,535 iterations in total (gallivm's loop
   // limiter, one counter for all loops of the invocation), which silently dropped every light past
   // the 65,535th: keep each dispatch's loop iterations under it.
@@ -18,7 +17,7 @@ BruteForcePass::BruteForcePass()
 }
 
 void BruteForcePass::execute(const BruteForceInputs& in, float clampDistance, gl::Texture2D& irradiance) const {
-  const gl::Program& program = in.shadowedIn ? shadowed_ : program_;
+  const gl::Program& program = in.shadowedIn ? shadowed_(*in.shadowedIn) : program_;
   if (in.shadowedIn) in.shadowedIn->bindForCompute();
   irradiance.clear(glm::vec4(0.0f));
   in.gbuffer.bindForReading();

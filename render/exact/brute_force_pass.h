@@ -10,6 +10,7 @@
 #include "render/gl/program.h"
 #include "render/passes/gbuffer_pass.h"
 #include "render/scene/scene_gpu.h"
+#include "render/scene/tracing_program.h"
 
 namespace lgh {
 
@@ -29,7 +30,8 @@ class BruteForcePass {
  private:
   static constexpr size_t kMaxLightsPerDispatch = 32768;  // see the constructor: llvmpipe's loop limit
   static constexpr size_t kMaxShadowedLightsPerDispatch = 32;
-  gl::Program program_, shadowed_;
+  gl::Program program_;
+  mutable TracingProgram shadowed_;  // with one shadow ray per light (LGH_SHADOWED)
   size_t maxBlockLights_ = 0;
 };
 

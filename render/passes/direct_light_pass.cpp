@@ -9,7 +9,7 @@
 
 namespace lgh {
 
-DirectLightPass::DirectLightPass() : program_(gl::Program::compute("direct_light.comp")) {}
+DirectLightPass::DirectLightPass() : program_("direct_light.comp") {}
 
 void DirectLightPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, bool shadows, bool skipPointLights,
                               gl::Texture2D& out) {
@@ -33,17 +33,18 @@ void DirectLightPass::execute(const SceneGpu& scene, const GBuffer& gbuffer, boo
   }
   gbuffer.bindForReading();
   out.bindImage(LGH_IMAGE_DIRECT, GL_READ_WRITE);
-  program_.set("shadows", int(shadows));
+  const gl::Program& program = program_(scene);
+  program.set("shadows", int(shadows));
   // A few lights per dispatch: llvmpipe ends an invocation's loops after 65,535 iterations in all,
   // and every light's shadow ray walks the BVH (hundreds of iterations in Sponza).
   constexpr size_t kLightsPerDispatch = 32;
   size_t first = 0;
   do {
     const size_t n = std::min(kLightsPerDispatch, lightCount - first);
-    program_.set("firstLight", unsigned(first));
-    program_.set("lightCount", unsigned(n));
-    program_.set("accumulate", int(first > 0));
-    program_.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
+    program.set("firstLight", unsigned(first));
+    program.set("lightCount", unsigned(n));
+    program.set("accumulate", int(first > 0));
+    program.dispatch2D(gbuffer.width, gbuffer.height, {8, 8});
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     first += n;
   } while (first < lightCount);

@@ -7,6 +7,7 @@
 #include "render/gl/texture.h"
 #include "render/passes/gbuffer_pass.h"
 #include "render/scene/scene_gpu.h"
+#include "render/scene/tracing_program.h"
 
 namespace lgh {
 
@@ -17,7 +18,7 @@ class DirectLightPass {
   void execute(const SceneGpu& scene, const GBuffer& gbuffer, bool shadows, bool skipPointLights, gl::Texture2D& out);
 
  private:
-  gl::Program program_;
+  TracingProgram program_;
   // The lights shaded here when point lights are skipped (uploaded when the scene's lights change,
   // bound in place of the scene's).
   gl::Buffer nonPointLights_;

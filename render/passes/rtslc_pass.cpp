@@ -10,8 +10,7 @@
 
 namespace lgh {
 
-RtslcPass::RtslcPass()
-    : program_(gl::Program::compute("rtslc.comp")), uniforms_(passes::kLightcutSampling, sizeof(gpu::RtslcUniforms)) {}
+RtslcPass::RtslcPass() : program_("rtslc.comp"), uniforms_(passes::kLightcutSampling, sizeof(gpu::RtslcUniforms)) {}
 
 void RtslcPass::bind(const RtslcInputs& in, const RtslcOptions& options, size_t dispatch, bool ratioOutputs) {
   const RtslcSettings& s = options.settings;
@@ -66,7 +65,8 @@ void RtslcPass::selectCuts(const RtslcInputs& in, const RtslcOptions& options) {
   if (in.tree.leafCount == 0) return;  // no lights: no tree, no cuts
   bind(in, options, 0, false);
   const int block = options.settings.blockSize;
-  program_.dispatch2D((in.gbuffer.width + block - 1) / block, (in.gbuffer.height + block - 1) / block, {8, 8});
+  program_(in.scene).dispatch2D((in.gbuffer.width + block - 1) / block, (in.gbuffer.height + block - 1) / block,
+                                {8, 8});
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   gl::checkErrors("lightcut cuts");
 }
@@ -88,7 +88,7 @@ void RtslcPass::sample(const RtslcInputs& in, const RtslcOptions& options, const
     out.ratio->bindImage(LGH_IMAGE_RTSLC_RATIO, GL_WRITE_ONLY);
     out.sampledLuminance->bindImage(LGH_IMAGE_RTSLC_SAMPLED, GL_WRITE_ONLY);
   }
-  program_.dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
+  program_(in.scene).dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   gl::checkErrors("lightcut sampling");
 }

@@ -13,6 +13,7 @@
 #include "render/passes/gbuffer_pass.h"
 #include "render/passes/light_tree_pass.h"
 #include "render/scene/scene_gpu.h"
+#include "render/scene/tracing_program.h"
 #include "render/settings.h"
 
 namespace lgh {
@@ -54,7 +55,7 @@ class RtslcPass {
 
  private:
   void bind(const RtslcInputs& in, const RtslcOptions& options, size_t dispatch, bool ratioOutputs);
-  gl::Program program_;
+  TracingProgram program_;
   gl::UniformBlocks uniforms_;  // the dispatch's gpu::RtslcUniforms, uploaded before each
   gl::Buffer cuts_;             // gpu::kMaxCutNodes node indices per block
 };

@@ -11,8 +11,7 @@
 namespace lgh {
 
 ShadowRayPass::ShadowRayPass()
-    : program_(gl::Program::compute("shadow_rays.comp")),
-      uniforms_(passes::kShadowRays, sizeof(gpu::ShadowRayUniforms)) {}
+    : program_("shadow_rays.comp"), uniforms_(passes::kShadowRays, sizeof(gpu::ShadowRayUniforms)) {}
 
 void ShadowRayPass::release() { uniforms_.release(); }
 
@@ -53,7 +52,7 @@ void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& o
   out.rawRatio.bindImage(LGH_IMAGE_SHADOW_RATIO, GL_WRITE_ONLY);
   out.sampledIrradiance.bindImage(LGH_IMAGE_SHADOW_SAMPLED_IRRADIANCE, GL_WRITE_ONLY);
   uniforms_.bind(0, LGH_UBO_PASS);
-  program_.dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
+  program_(in.scene).dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   gl::checkErrors("shadow rays");
 }

@@ -19,6 +19,7 @@
 #include "render/passes/light_volume_pass.h"
 #include "render/passes/shadow_targets_pass.h"
 #include "render/scene/scene_gpu.h"
+#include "render/scene/tracing_program.h"
 #include "render/shadow_estimator.h"
 
 namespace lgh {
@@ -59,7 +60,7 @@ class ShadowRayPass {
   void execute(const ShadowRayInputs& in, const ShadowRayOptions& options, const ShadowRayTargets& out);
 
  private:
-  gl::Program program_;
+  TracingProgram program_;
   gl::UniformBlocks uniforms_;  // one gpu::ShadowRayUniforms
 };
 

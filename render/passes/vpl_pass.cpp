@@ -18,8 +18,8 @@ VplPass::VplPass(const SceneGpu& scene)
       triangleEmitterBuffer_(
           gl::Buffer::fromVector({passes::kInputLights, "emissive triangles"}, triangleEmitters_.emitters, 0)),
       emittersLightsVersion_(scene.lightsVersion()),
-      paths_(gl::Program::compute("vpl_generate.comp", {{"LGH_VPL_PATHS", "1"}})),
-      emitterSamples_(gl::Program::compute("vpl_generate.comp", {{"LGH_EMITTER_SAMPLES", "1"}})),
+      paths_("vpl_generate.comp", {{"LGH_VPL_PATHS", "1"}}),
+      emitterSamples_("vpl_generate.comp", {{"LGH_EMITTER_SAMPLES", "1"}}),
       compactFlags_(gl::Program::compute("vpl_compact.comp", {{"LGH_COMPACT_FLAGS", "1"}})),
       compactWrite_(gl::Program::compute("vpl_compact.comp", {{"LGH_COMPACT_WRITE", "1"}})) {}
 
@@ -111,7 +111,7 @@ size_t VplPass::tracePaths(gl::Buffer& out, size_t offset, size_t budget, int bo
     gl::ensureSize(pathSlots_, {passes::kInputLights, "VPL path slots", "vpls"},
                    count * size_t(bounces) * sizeof(gpu::GpuLight));
     pathSlots_.clear();  // flags 0: a slot no path wrote
-    generate(paths_, allEmitterBuffer_, pathSlots_, 0, first, count, paths, bounces, seed);
+    generate(paths_(scene_), allEmitterBuffer_, pathSlots_, 0, first, count, paths, bounces, seed);
     written += compact(count * size_t(bounces), out, offset + written);
   }
   // The paths' slots are generation scratch: the frame holds S0, not them.
@@ -125,8 +125,8 @@ size_t VplPass::sampleEmissiveTriangles(gl::Buffer& out, size_t offset, size_t c
   if (triangleEmitters_.empty() || count == 0) return 0;
   const size_t batch = batchSamples(1);
   for (size_t first = 0; first < count; first += batch)
-    generate(emitterSamples_, triangleEmitterBuffer_, out, offset + first, first, std::min(batch, count - first), count,
-             1, seed);
+    generate(emitterSamples_(scene_), triangleEmitterBuffer_, out, offset + first, first,
+             std::min(batch, count - first), count, 1, seed);
   return count;  // every sample writes its slot
 }
 

@@ -15,6 +15,7 @@
 #include "render/pass_names.h"
 #include "render/scene/emitters.h"
 #include "render/scene/scene_gpu.h"
+#include "render/scene/tracing_program.h"
 
 namespace lgh {
 
@@ -55,7 +56,8 @@ class VplPass {
   gl::Buffer pathSlots_, slotIndex_;  // the paths' fixed slots (GpuLight, flags 0: empty) and their compaction
   unsigned emittersLightsVersion_;    // SceneGpu::lightsVersion() that allEmitters_ was built from
   size_t batchLimit_ = 0;
-  gl::Program paths_, emitterSamples_, compactFlags_, compactWrite_;
+  TracingProgram paths_, emitterSamples_;
+  gl::Program compactFlags_, compactWrite_;
   gl::PrefixSum prefixSum_{passes::kInputLights};
 };
 

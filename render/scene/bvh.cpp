@@ -1,31 +1,38 @@
 #include "render/scene/bvh.h"
 
+#include <embree3/rtcore.h>
+#include <embree3/rtcore_builder.h>
+
 #include <algorithm>
-#include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
-#include <numeric>
+#include <memory>
+#include <new>
+#include <stdexcept>
+#include <string>
 
 namespace lgh {
 namespace {
 
-constexpr int kBins = 16;
-constexpr size_t kMaxLeafSize = 8;
-constexpr float kTraversalCost = 1.0f;     // one box test
-constexpr float kIntersectionCost = 1.0f;  // one triangle test
-// Leaves are forced above this depth; gpu::kBvhStackSize - 4 leaves room for the root and pending pushes.
-constexpr int kMaxDepth = int(gpu::kBvhStackSize) - 4;
+constexpr unsigned kMaxLeafSize = 8;
+// The traversals' stacks: binary pushes at most one node per level, 4-wide at most three (four children
+// entered, one taken at once), so these depths keep them within gpu::kBvhStackSize with room to spare.
+constexpr unsigned kMaxBinaryDepth = gpu::kBvhStackSize - 4;
+constexpr unsigned kMaxWideDepth = (gpu::kBvhStackSize - 4) / (gpu::kBvhWidth - 1);
 
 struct Box {
   glm::vec3 min{std::numeric_limits<float>::max()}, max{-std::numeric_limits<float>::max()};
   void extend(const glm::vec3& p) { min = glm::min(min, p), max = glm::max(max, p); }
-  void extend(const Box& b) { min = glm::min(min, b.min), max = glm::max(max, b.max); }
+  bool empty() const { return min.x > max.x; }
   float area() const {
-    if (min.x > max.x) return 0.0f;
+    if (empty()) return 0.0f;
     const glm::vec3 e = max - min;
     return 2.0f * (e.x * e.y + e.y * e.z + e.z * e.x);
   }
 };
+
+Box toBox(const RTCBounds& b) { return {{b.lower_x, b.lower_y, b.lower_z}, {b.upper_x, b.upper_y, b.upper_z}}; }
 
 // Grows a box outward by a few ulps so that float slab tests on the GPU cannot miss a triangle lying
 // exactly in a box face (axis-aligned geometry makes flat boxes everywhere in real scenes).
@@ -40,156 +47,275 @@ Box padded(const Box& b) {
   return out;
 }
 
-struct BuildTriangle {
-  Box bounds;
-  glm::vec3 centroid;
+// The tree Embree builds, in its thread-local memory (freed with the RTCBVH; no destructors run).
+struct BuildNode {
+  bool leaf;
+};
+struct InnerNode : BuildNode {
+  unsigned childCount = 0;
+  BuildNode* children[gpu::kBvhWidth] = {};
+  RTCBounds bounds[gpu::kBvhWidth] = {};
+};
+struct LeafNode : BuildNode {
+  unsigned count = 0;
+  std::uint32_t triangles[kMaxLeafSize] = {};
 };
 
-struct Split {
-  int axis = -1;
-  float position = 0;
-  float cost = std::numeric_limits<float>::max();
+struct BuildContext {
+  const std::vector<glm::vec3>& positions;
+  const std::vector<std::uint32_t>& indices;
+  std::atomic<bool> oversizedLeaf{false};
 };
 
-class Builder {
+void* createNode(RTCThreadLocalAllocator allocator, unsigned int childCount, void*) {
+  void* memory = rtcThreadLocalAlloc(allocator, sizeof(InnerNode), 16);
+  InnerNode* node = new (memory) InnerNode;
+  node->leaf = false;
+  node->childCount = childCount;
+  return node;
+}
+
+void setNodeChildren(void* node, void** children, unsigned int childCount, void*) {
+  for (unsigned i = 0; i < childCount; ++i)
+    static_cast<InnerNode*>(node)->children[i] = static_cast<BuildNode*>(children[i]);
+}
+
+void setNodeBounds(void* node, const RTCBounds** bounds, unsigned int childCount, void*) {
+  for (unsigned i = 0; i < childCount; ++i) static_cast<InnerNode*>(node)->bounds[i] = *bounds[i];
+}
+
+void* createLeaf(RTCThreadLocalAllocator allocator, const RTCBuildPrimitive* primitives, size_t count, void* user) {
+  void* memory = rtcThreadLocalAlloc(allocator, sizeof(LeafNode), 16);
+  LeafNode* leaf = new (memory) LeafNode;
+  leaf->leaf = true;
+  if (count > kMaxLeafSize) static_cast<BuildContext*>(user)->oversizedLeaf = true;
+  leaf->count = unsigned(std::min<size_t>(count, kMaxLeafSize));
+  for (unsigned i = 0; i < leaf->count; ++i) leaf->triangles[i] = primitives[i].primID;
+  return leaf;
+}
+
+// A spatial split of one triangle reference: the bounds of the triangle's parts on each side of the plane
+// (its vertices there and where its edges cross it), within the reference's bounds (already clipped by
+// earlier splits).
+void splitPrimitive(const RTCBuildPrimitive* primitive, unsigned int dimension, float position, RTCBounds* left,
+                    RTCBounds* right, void* user) {
+  const BuildContext& context = *static_cast<const BuildContext*>(user);
+  glm::vec3 v[3];
+  for (int k = 0; k < 3; ++k) v[k] = context.positions[context.indices[3 * size_t(primitive->primID) + k]];
+  Box leftBox, rightBox;
+  for (int k = 0; k < 3; ++k) {
+    const glm::vec3& a = v[k];
+    const glm::vec3& b = v[(k + 1) % 3];
+    if (a[dimension] <= position) leftBox.extend(a);
+    if (a[dimension] >= position) rightBox.extend(a);
+    if ((a[dimension] < position && b[dimension] > position) || (a[dimension] > position && b[dimension] < position)) {
+      const float t = (position - a[dimension]) / (b[dimension] - a[dimension]);
+      glm::vec3 crossing = a + t * (b - a);
+      crossing[dimension] = position;
+      leftBox.extend(crossing);
+      rightBox.extend(crossing);
+    }
+  }
+  const Box whole = toBox(RTCBounds{primitive->lower_x, primitive->lower_y, primitive->lower_z, 0, primitive->upper_x,
+                                    primitive->upper_y, primitive->upper_z, 0});
+  auto clip = [&](Box b, bool isLeft) {
+    if (b.empty()) b = whole;  // a reference touching the plane at one point only
+    b.min = glm::max(b.min, whole.min);
+    b.max = glm::min(b.max, whole.max);
+    if (isLeft)
+      b.max[dimension] = std::min(b.max[dimension], position);
+    else
+      b.min[dimension] = std::max(b.min[dimension], position);
+    b.max = glm::max(b.max, b.min);
+    return RTCBounds{b.min.x, b.min.y, b.min.z, 0, b.max.x, b.max.y, b.max.z, 0};
+  };
+  *left = clip(leftBox, true);
+  *right = clip(rightBox, false);
+}
+
+// Writes Embree's tree into the GPU layout, depth first, and counts what it wrote.
+class Flattener {
  public:
-  Builder(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices)
-      : positions_(positions), indices_(indices) {
-    const size_t count = indices.size() / 3;
-    tris_.resize(count);
-    order_.resize(count);
-    std::iota(order_.begin(), order_.end(), 0u);
-    for (size_t i = 0; i < count; ++i) {
-      for (int k = 0; k < 3; ++k) tris_[i].bounds.extend(positions[indices[3 * i + k]]);
-      tris_[i].centroid = 0.5f * (tris_[i].bounds.min + tris_[i].bounds.max);
+  Flattener(Bvh& bvh, const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices)
+      : bvh_(bvh), positions_(positions), indices_(indices) {}
+
+  void binary(const BuildNode* node, size_t index, const Box& bounds, int depth) {
+    const Box box = padded(bounds);
+    gpu::BvhNode& out = bvh_.nodes[index];
+    out.boundsMin = box.min;
+    out.boundsMax = box.max;
+    note(box, depth);
+    if (node->leaf) {
+      const LeafNode& leaf = *static_cast<const LeafNode*>(node);
+      out.firstChildOrTriangle = leafTriangles(leaf, box);
+      out.triangleCount = leaf.count;
+      return;
     }
+    const InnerNode& inner = *static_cast<const InnerNode*>(node);
+    if (inner.childCount != 2)
+      throw std::runtime_error("BVH: Embree made a binary node of " + std::to_string(inner.childCount) + " children");
+    const size_t first = bvh_.nodes.size();
+    bvh_.nodes.resize(first + 2);
+    bvh_.nodes[index].firstChildOrTriangle = std::uint32_t(first);
+    bvh_.nodes[index].triangleCount = 0;
+    bvh_.stats.sahCost += 2.0 * area(box);
+    for (unsigned c = 0; c < 2; ++c) binary(inner.children[c], first + c, toBox(inner.bounds[c]), depth + 1);
   }
 
-  Bvh build() {
-    Bvh bvh;
-    if (tris_.empty()) return bvh;
-    bvh.nodes.reserve(2 * tris_.size());
-    bvh.nodes.emplace_back();
-    buildNode(bvh, 0, 0, tris_.size(), 0);
-    // Triangles in leaf order, as vertex + edges.
-    bvh.triangles.reserve(order_.size());
-    for (std::uint32_t t : order_) {
-      const glm::vec3 v0 = positions_[indices_[3 * t]], v1 = positions_[indices_[3 * t + 1]],
-                      v2 = positions_[indices_[3 * t + 2]];
-      bvh.triangles.push_back({v0, t, v1 - v0, 0u, v2 - v0, 0.0f});
+  // An inner node's children into wideNodes[index]; a leaf root is the only child of the root.
+  void wide(const BuildNode* node, size_t index, const Box& bounds, int depth) {
+    note(padded(bounds), depth);
+    const InnerNode* inner = node->leaf ? nullptr : static_cast<const InnerNode*>(node);
+    const unsigned count = inner ? inner->childCount : 1;
+    gpu::BvhWideNode out{};
+    out.children = glm::uvec4(gpu::kBvhEmptyChild);
+    bvh_.stats.sahCost += double(gpu::kBvhWidth) * area(padded(bounds));
+    for (unsigned c = 0; c < count; ++c) {
+      const BuildNode* child = inner ? inner->children[c] : node;
+      const Box box = padded(inner ? toBox(inner->bounds[c]) : bounds);
+      out.lowerX[int(c)] = box.min.x, out.upperX[int(c)] = box.max.x;
+      out.lowerY[int(c)] = box.min.y, out.upperY[int(c)] = box.max.y;
+      out.lowerZ[int(c)] = box.min.z, out.upperZ[int(c)] = box.max.z;
+      if (child->leaf) {
+        const LeafNode& leaf = *static_cast<const LeafNode*>(child);
+        note(box, depth + 1);
+        const std::uint32_t first = leafTriangles(leaf, box);
+        if (first > gpu::kBvhLeafFirstMask)
+          throw std::runtime_error("BVH: more triangle references than 4-wide leaves address");
+        out.children[int(c)] = gpu::kBvhLeaf | (leaf.count - 1) << gpu::kBvhLeafCountShift | first;
+      } else {
+        const size_t childIndex = bvh_.wideNodes.size();
+        bvh_.wideNodes.emplace_back();
+        out.children[int(c)] = std::uint32_t(childIndex);
+        wide(child, childIndex, box, depth + 1);
+      }
     }
-    bvh.stats.nodeCount = bvh.nodes.size();
-    const float rootArea = std::max(Box{bvh.nodes[0].boundsMin, bvh.nodes[0].boundsMax}.area(), 1e-30f);
-    for (const gpu::BvhNode& n : bvh.nodes) {
-      const float p = Box{n.boundsMin, n.boundsMax}.area() / rootArea;
-      bvh.stats.sahCost += n.triangleCount ? p * kIntersectionCost * float(n.triangleCount) : p * 2 * kTraversalCost;
-    }
-    return bvh;
+    bvh_.wideNodes[index] = out;
   }
+
+  void setRootArea(const Box& root) { rootArea_ = std::max(double(root.area()), 1e-30); }
 
  private:
-  Box rangeBounds(size_t begin, size_t end, bool centroids) const {
-    Box b;
-    for (size_t i = begin; i < end; ++i) {
-      if (centroids)
-        b.extend(tris_[order_[i]].centroid);
-      else
-        b.extend(tris_[order_[i]].bounds);
+  double area(const Box& b) const { return double(b.area()) / rootArea_; }
+  void note(const Box&, int depth) {
+    ++bvh_.stats.nodeCount;
+    bvh_.stats.maxDepth = std::max(bvh_.stats.maxDepth, depth);
+  }
+  std::uint32_t leafTriangles(const LeafNode& leaf, const Box& box) {
+    const std::uint32_t first = std::uint32_t(bvh_.triangles.size());
+    for (unsigned i = 0; i < leaf.count; ++i) {
+      const std::uint32_t t = leaf.triangles[i];
+      const glm::vec3 v0 = positions_[indices_[3 * size_t(t)]], v1 = positions_[indices_[3 * size_t(t) + 1]],
+                      v2 = positions_[indices_[3 * size_t(t) + 2]];
+      bvh_.triangles.push_back({v0, t, v1 - v0, 0u, v2 - v0, 0.0f});
     }
-    return b;
+    ++bvh_.stats.leafCount;
+    bvh_.stats.maxLeafSize = std::max(bvh_.stats.maxLeafSize, size_t(leaf.count));
+    bvh_.stats.sahCost += double(leaf.count) * area(box);
+    return first;
   }
 
-  // Binned SAH over the centroid bounds of the range, all three axes.
-  Split findSplit(size_t begin, size_t end, const Box& centroidBounds) const {
-    Split best;
-    for (int axis = 0; axis < 3; ++axis) {
-      const float lo = centroidBounds.min[axis], hi = centroidBounds.max[axis];
-      if (!(hi > lo)) continue;
-      std::array<Box, kBins> binBounds;
-      std::array<size_t, kBins> binCounts{};
-      const float scale = kBins / (hi - lo);
-      for (size_t i = begin; i < end; ++i) {
-        const BuildTriangle& t = tris_[order_[i]];
-        const int bin = std::min(kBins - 1, int((t.centroid[axis] - lo) * scale));
-        binBounds[bin].extend(t.bounds);
-        ++binCounts[bin];
-      }
-      // Sweep from the right to get suffix areas, then from the left to evaluate each plane.
-      std::array<float, kBins> rightArea{};
-      std::array<size_t, kBins> rightCount{};
-      Box acc;
-      size_t count = 0;
-      for (int b = kBins - 1; b > 0; --b) {
-        acc.extend(binBounds[b]);
-        count += binCounts[b];
-        rightArea[b] = acc.area();
-        rightCount[b] = count;
-      }
-      acc = Box{};
-      count = 0;
-      for (int b = 0; b < kBins - 1; ++b) {
-        acc.extend(binBounds[b]);
-        count += binCounts[b];
-        if (count == 0 || rightCount[b + 1] == 0) continue;
-        const float cost = acc.area() * float(count) + rightArea[b + 1] * float(rightCount[b + 1]);
-        if (cost < best.cost) best = {axis, lo + float(b + 1) / scale, cost};
-      }
-    }
-    return best;
-  }
-
-  void makeLeaf(Bvh& bvh, size_t nodeIndex, size_t begin, size_t end) {
-    bvh.nodes[nodeIndex].firstChildOrTriangle = std::uint32_t(begin);
-    bvh.nodes[nodeIndex].triangleCount = std::uint32_t(end - begin);
-    ++bvh.stats.leafCount;
-    bvh.stats.maxLeafSize = std::max(bvh.stats.maxLeafSize, end - begin);
-  }
-
-  void buildNode(Bvh& bvh, size_t nodeIndex, size_t begin, size_t end, int depth) {
-    const Box bounds = padded(rangeBounds(begin, end, false));
-    bvh.nodes[nodeIndex].boundsMin = bounds.min;
-    bvh.nodes[nodeIndex].boundsMax = bounds.max;
-    bvh.stats.maxDepth = std::max(bvh.stats.maxDepth, depth);
-    const size_t count = end - begin;
-    if (count <= 1 || depth >= kMaxDepth) return makeLeaf(bvh, nodeIndex, begin, end);
-
-    const Box centroidBounds = rangeBounds(begin, end, true);
-    const Split split = findSplit(begin, end, centroidBounds);
-    size_t mid = begin;
-    if (split.axis >= 0) {
-      // SAH: splitting pays if two child traversals plus their triangles cost less than testing all here.
-      const float leafCost = kIntersectionCost * float(count);
-      const float splitCost = kTraversalCost + kIntersectionCost * split.cost / std::max(bounds.area(), 1e-30f);
-      if (splitCost >= leafCost && count <= kMaxLeafSize) return makeLeaf(bvh, nodeIndex, begin, end);
-      mid = size_t(std::partition(order_.begin() + begin, order_.begin() + end,
-                                  [&](std::uint32_t t) { return tris_[t].centroid[split.axis] < split.position; }) -
-                   order_.begin());
-    }
-    if (mid == begin || mid == end) {
-      // All centroids coincide (or binning could not separate them): split the range in half so
-      // that a pile of identical triangles still gets a balanced tree of small leaves.
-      if (count <= kMaxLeafSize) return makeLeaf(bvh, nodeIndex, begin, end);
-      mid = begin + count / 2;
-    }
-    const size_t left = bvh.nodes.size();
-    bvh.nodes.emplace_back();
-    bvh.nodes.emplace_back();
-    bvh.nodes[nodeIndex].firstChildOrTriangle = std::uint32_t(left);
-    bvh.nodes[nodeIndex].triangleCount = 0;
-    buildNode(bvh, left, begin, mid, depth + 1);
-    buildNode(bvh, left + 1, mid, end, depth + 1);
-  }
-
+  Bvh& bvh_;
   const std::vector<glm::vec3>& positions_;
   const std::vector<std::uint32_t>& indices_;
-  std::vector<BuildTriangle> tris_;
-  std::vector<std::uint32_t> order_;
+  double rootArea_ = 1;
 };
+
+struct DeviceDeleter {
+  void operator()(RTCDeviceTy* d) const { rtcReleaseDevice(d); }
+};
+struct BvhDeleter {
+  void operator()(RTCBVHTy* b) const { rtcReleaseBVH(b); }
+};
+
+// Embree 3 reports an error code only.
+std::string embreeError(RTCDevice device) {
+  switch (rtcGetDeviceError(device)) {
+    case RTC_ERROR_NONE:
+      return "no error reported";
+    case RTC_ERROR_INVALID_ARGUMENT:
+      return "invalid argument";
+    case RTC_ERROR_INVALID_OPERATION:
+      return "invalid operation";
+    case RTC_ERROR_OUT_OF_MEMORY:
+      return "out of memory";
+    case RTC_ERROR_UNSUPPORTED_CPU:
+      return "unsupported CPU";
+    case RTC_ERROR_CANCELLED:
+      return "cancelled";
+    default:
+      return "unknown error";
+  }
+}
 
 }  // namespace
 
-Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices) {
-  return Builder(positions, indices).build();
+Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices, BvhLayout layout) {
+  Bvh bvh;
+  bvh.layout = layout;
+  const size_t count = indices.size() / 3;
+  if (count == 0) return bvh;
+  if (count > size_t(std::numeric_limits<std::uint32_t>::max()) / 2)
+    throw std::runtime_error("BVH: " + std::to_string(count) + " triangles, more than the builder indexes");
+
+  // One reference per triangle, and room for as many again made by spatial splits.
+  std::vector<RTCBuildPrimitive> primitives;
+  primitives.reserve(2 * count);
+  Box root;
+  for (size_t t = 0; t < count; ++t) {
+    Box b;
+    for (int k = 0; k < 3; ++k) b.extend(positions[indices[3 * t + size_t(k)]]);
+    root.extend(b.min), root.extend(b.max);
+    primitives.push_back({b.min.x, b.min.y, b.min.z, 0u, b.max.x, b.max.y, b.max.z, std::uint32_t(t)});
+  }
+
+  std::unique_ptr<RTCDeviceTy, DeviceDeleter> device(rtcNewDevice(nullptr));
+  if (!device) throw std::runtime_error("BVH: Embree device: " + embreeError(nullptr));
+  std::unique_ptr<RTCBVHTy, BvhDeleter> tree(rtcNewBVH(device.get()));
+  BuildContext context{positions, indices};
+  RTCBuildArguments args = rtcDefaultBuildArguments();
+  args.buildQuality = RTC_BUILD_QUALITY_HIGH;  // SAH with spatial splits
+  args.maxBranchingFactor = layout == BvhLayout::Wide4 ? gpu::kBvhWidth : 2;
+  args.maxDepth = layout == BvhLayout::Wide4 ? kMaxWideDepth : kMaxBinaryDepth;
+  args.sahBlockSize = 1;
+  args.minLeafSize = 1;
+  args.maxLeafSize = kMaxLeafSize;
+  args.traversalCost = 1.0f;
+  args.intersectionCost = 1.0f;
+  args.bvh = tree.get();
+  args.primitives = primitives.data();
+  args.primitiveCount = primitives.size();
+  args.primitiveArrayCapacity = primitives.capacity();
+  args.createNode = createNode;
+  args.setNodeChildren = setNodeChildren;
+  args.setNodeBounds = setNodeBounds;
+  args.createLeaf = createLeaf;
+  args.splitPrimitive = splitPrimitive;
+  args.userPtr = &context;
+  const BuildNode* top = static_cast<const BuildNode*>(rtcBuildBVH(&args));
+  if (!top) throw std::runtime_error("BVH: Embree's builder failed: " + embreeError(device.get()));
+  if (context.oversizedLeaf)
+    throw std::runtime_error("BVH: a leaf of more than " + std::to_string(kMaxLeafSize) +
+                             " triangles at the depth limit (a pile of overlapping triangles?)");
+
+  Flattener flatten(bvh, positions, indices);
+  flatten.setRootArea(padded(root));
+  bvh.triangles.reserve(primitives.size());
+  if (layout == BvhLayout::Wide4) {
+    bvh.wideNodes.reserve(primitives.size() / 2 + 1);
+    bvh.wideNodes.emplace_back();
+    flatten.wide(top, 0, root, 0);
+  } else {
+    bvh.nodes.reserve(2 * primitives.size());
+    bvh.nodes.emplace_back();
+    flatten.binary(top, 0, root, 0);
+  }
+  bvh.stats.triangleReferences = bvh.triangles.size();
+  const unsigned depthLimit = layout == BvhLayout::Wide4 ? kMaxWideDepth : kMaxBinaryDepth;
+  if (bvh.stats.maxDepth > int(depthLimit))
+    throw std::runtime_error("BVH: depth " + std::to_string(bvh.stats.maxDepth) + " is beyond the GPU stack's " +
+                             std::to_string(depthLimit));
+  return bvh;
 }
 
 }  // namespace lgh

@@ -1,10 +1,8 @@
 #pragma once
-// Bounding volume hierarchy over scene triangles, built on the CPU and flattened for the GPU.
-//
-// Why binned SAH: the surface area heuristic gives near-best trace speed, which matters most here
-// (shadow rays and VPL paths run on a software rasterizer's compute threads), and binning (16 bins
-// per axis over centroid bounds) builds Sponza's 66K triangles in tens of milliseconds in O(n log n).
-// The scene is static, so the build is paid once per load; refitting is not needed.
+// Bounding volume hierarchy over scene triangles, built by Embree's BVH builder (rtcBuildBVH: binned SAH
+// with spatial splits at high quality) and written into the GPU's node layout: binary or 4-wide
+// (shared/bvh_types.h). Our code only defines the nodes and leaves Embree hands back and flattens them;
+// the build's quality and speed are Embree's. The scene is static: built once per load.
 
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -14,21 +12,32 @@
 
 namespace lgh {
 
+// The GPU node layouts, in kBvhLayoutChoices' order (= gpu::kBvhLayout*).
+enum class BvhLayout { Binary, Wide4 };
+inline constexpr const char* kBvhLayoutChoices = "binary|wide4";
+
 struct BvhBuildStats {
   size_t nodeCount = 0, leafCount = 0;
-  int maxDepth = 0;
+  size_t triangleReferences = 0;  // leaves' triangles: above the scene's count by the spatial splits
+  int maxDepth = 0;               // in nodes of the layout, the root at depth 0
   size_t maxLeafSize = 0;
-  double sahCost = 0;  // expected cost per ray, relative to one box test
+  double sahCost = 0;  // expected cost per ray, one box or one triangle test each
 };
 
 struct Bvh {
-  std::vector<gpu::BvhNode> nodes;          // nodes[0] is the root (empty when there are no triangles)
+  BvhLayout layout = BvhLayout::Binary;
+  std::vector<gpu::BvhNode> nodes;          // binary: nodes[0] is the root (empty without triangles)
+  std::vector<gpu::BvhWideNode> wideNodes;  // wide4: wideNodes[0] is the root (empty without triangles)
   std::vector<gpu::BvhTriangle> triangles;  // leaf order
   BvhBuildStats stats;
+
+  size_t nodeBytes() const { return nodes.size() * sizeof(gpu::BvhNode) + wideNodes.size() * sizeof(gpu::BvhWideNode); }
 };
 
 // positions/indices as in Scene (3 indices per triangle). Degenerate triangles are kept (they never
-// hit). Depth stays below gpu::kBvhStackSize so the GPU traversal stack cannot overflow.
-Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices);
+// hit). The depth stays within what the GPU traversal's stack holds (gpu::kBvhStackSize entries);
+// throws std::runtime_error where it cannot (or when Embree fails).
+Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices,
+             BvhLayout layout = BvhLayout::Wide4);
 
 }  // namespace lgh

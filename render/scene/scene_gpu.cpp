@@ -77,10 +77,10 @@ void packTexels(const Scene& scene, std::vector<gpu::GpuTextureInfo>& infos, std
 
 }  // namespace
 
-SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
+SceneGpu::SceneGpu(const Scene& scene, BvhLayout layout) : scene_(scene) {
   gl::DebugGroup group("upload scene");
   const auto start = std::chrono::steady_clock::now();
-  bvh_ = buildBvh(scene.positions, scene.indices);
+  bvh_ = buildBvh(scene.positions, scene.indices, layout);
   bvhBuildMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
   // Alpha-masked triangles are marked in the BVH so that traversal tests alpha only where it can matter.
@@ -114,7 +114,8 @@ SceneGpu::SceneGpu(const Scene& scene) : scene_(scene) {
   for (const Material& m : scene.materials) materials_.push_back(toGpu(m));
   sceneLights_ = scene.lights;
   for (const PunctualLight& l : scene.lights) lights_.push_back(toGpu(l));
-  bvhNodes_ = gl::Buffer::fromVector({passes::kScene, "BVH nodes"}, bvh_.nodes, 0);
+  bvhNodes_ = layout == BvhLayout::Wide4 ? gl::Buffer::fromVector({passes::kScene, "BVH nodes"}, bvh_.wideNodes, 0)
+                                         : gl::Buffer::fromVector({passes::kScene, "BVH nodes"}, bvh_.nodes, 0);
   bvhTriangles_ = gl::Buffer::fromVector({passes::kScene, "BVH triangles"}, bvh_.triangles, 0);
   materialBuffer_ = gl::Buffer::fromVector({passes::kScene, "materials"}, materials_, 0);
   lightBuffer_ = gl::Buffer::fromVector({passes::kScene, "punctual lights"}, lights_,

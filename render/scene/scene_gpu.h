@@ -18,7 +18,8 @@ namespace lgh {
 
 class SceneGpu {
  public:
-  explicit SceneGpu(const Scene& scene);
+  // The BVH in `layout`: what the tracing passes compile their traversal for (TracingProgram).
+  explicit SceneGpu(const Scene& scene, BvhLayout layout = BvhLayout::Wide4);
 
   // Binds the BVH, scene triangles, materials, textures and punctual lights at their LGH_BINDING_*
   // slots for compute shaders.

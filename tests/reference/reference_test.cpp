@@ -25,7 +25,9 @@
 #include "render/image_compare.h"
 #include "render/passes/lgh_build_pass.h"
 #include "render/renderer.h"
+#include "render/scene/bvh.h"
 #include "render/scene/scene_gpu.h"
+#include "render/scene/tracing_program.h"
 #include "shared/bindings.h"
 #include "shared/lgh_types.h"
 
@@ -163,28 +165,34 @@ TEST_F(ReferenceTest, VisibilityAgreesWithGpuBvh) {
   ASSERT_GT(rays.size(), 100000u);
   const std::vector<std::uint8_t> cpu = occlusion.occluded(rays);
 
-  gl::Buffer nodes = gl::Buffer::fromVector({"test", "data"}, f.gpu.bvh().nodes),
-             tris = gl::Buffer::fromVector({"test", "data"}, f.gpu.bvh().triangles);
-  gl::Buffer rayBuffer = gl::Buffer::fromVector({"test", "data"}, gpuRays),
-             hitBuffer({"test", "hits"}, gpuRays.size() * sizeof(TestHit));
-  nodes.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_NODES);
-  tris.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_TRIANGLES);
-  rayBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
-  hitBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
-  gl::Program::compute("tests/trace_rays.comp").dispatch1D(gpuRays.size(), 64);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  const std::vector<TestHit> gpuHits = hitBuffer.downloadAll<TestHit>();
+  // Each BVH layout's answers (the scene's own, and the other built here).
+  for (BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide4}) {
+    const Bvh bvh = buildBvh(f.scene.positions, f.scene.indices, layout);
+    gl::Buffer nodes = layout == BvhLayout::Wide4 ? gl::Buffer::fromVector({"test", "data"}, bvh.wideNodes)
+                                                  : gl::Buffer::fromVector({"test", "data"}, bvh.nodes),
+               tris = gl::Buffer::fromVector({"test", "data"}, bvh.triangles);
+    gl::Buffer rayBuffer = gl::Buffer::fromVector({"test", "data"}, gpuRays),
+               hitBuffer({"test", "hits"}, gpuRays.size() * sizeof(TestHit));
+    nodes.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_NODES);
+    tris.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_TRIANGLES);
+    rayBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+    hitBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+    TracingProgram("tests/trace_rays.comp").forLayout(layout).dispatch1D(gpuRays.size(), 64);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const std::vector<TestHit> gpuHits = hitBuffer.downloadAll<TestHit>();
 
-  size_t blocked = 0, differ = 0;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    blocked += cpu[i];
-    differ += (gpuHits[i].anyHit != 0) != (cpu[i] != 0) ? 1 : 0;
+    size_t blocked = 0, differ = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      blocked += cpu[i];
+      differ += (gpuHits[i].anyHit != 0) != (cpu[i] != 0) ? 1 : 0;
+    }
+    std::printf("  %s BVH: %zu shadow rays, %zu blocked (Embree); %zu differ from the GPU's (%.2e)\n",
+                layout == BvhLayout::Wide4 ? "wide4" : "binary", rays.size(), blocked, differ,
+                double(differ) / double(rays.size()));
+    EXPECT_GT(blocked, rays.size() / 100) << "the scene should cast some indirect shadows";
+    EXPECT_LT(blocked, rays.size() * 99 / 100);
+    EXPECT_LE(double(differ), 1e-3 * double(rays.size()));
   }
-  std::printf("  %zu shadow rays, %zu blocked (Embree); %zu differ from the GPU BVH (%.2e)\n", rays.size(), blocked,
-              differ, double(differ) / double(rays.size()));
-  EXPECT_GT(blocked, rays.size() / 100) << "the scene should cast some indirect shadows";
-  EXPECT_LT(blocked, rays.size() * 99 / 100);
-  EXPECT_LE(double(differ), 1e-3 * double(rays.size()));
 
   // The shadowed sums: Embree's against BruteForcePass's shadowed variant (the same rays on the GPU).
   const reference::ReferenceImage ref = computeQuietly(occlusion, f.input);

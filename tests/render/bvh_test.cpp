@@ -1,5 +1,7 @@
-// BVH: structure invariants on the CPU, and the GPU traversal against brute-force intersection of
-// every triangle (the same shared Moller-Trumbore code) on random rays.
+// BVH, in each node layout (binary, 4-wide; built by Embree's builder): structure invariants on the CPU,
+// and the GPU traversal against brute-force intersection of every triangle (the same shared
+// Moller-Trumbore code) on random rays: a triangle soup with flat boxes and a degenerate triangle, the
+// same soup 1e6 from the origin, Sponza, one triangle, and a pile of coincident triangles.
 //
 // Tolerance, documented: results may differ only where float rounding decides the outcome, i.e.
 // when a ray passes within kEdgeEpsilon (barycentric) of a triangle edge, or two triangles are hit
@@ -16,6 +18,7 @@
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
 #include "render/scene/scene.h"
+#include "render/scene/tracing_program.h"
 #include "shared/bindings.h"
 #include "shared/ray_triangle.h"
 #include "tests/test_types.h"
@@ -101,7 +104,8 @@ BruteForceHit bruteForce(const Mesh& mesh, const TestRay& ray) {
 }
 
 std::vector<TestHit> traceOnGpu(const Bvh& bvh, const std::vector<TestRay>& rays) {
-  gl::Buffer nodes = gl::Buffer::fromVector({"test", "data"}, bvh.nodes),
+  gl::Buffer nodes = bvh.layout == BvhLayout::Wide4 ? gl::Buffer::fromVector({"test", "data"}, bvh.wideNodes)
+                                                    : gl::Buffer::fromVector({"test", "data"}, bvh.nodes),
              tris = gl::Buffer::fromVector({"test", "data"}, bvh.triangles);
   gl::Buffer rayBuffer = gl::Buffer::fromVector({"test", "data"}, rays),
              hitBuffer({"test", "hits"}, rays.size() * sizeof(TestHit));
@@ -109,7 +113,7 @@ std::vector<TestHit> traceOnGpu(const Bvh& bvh, const std::vector<TestRay>& rays
   tris.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_TRIANGLES);
   rayBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   hitBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
-  gl::Program::compute("tests/trace_rays.comp").dispatch1D(rays.size(), 64);
+  TracingProgram("tests/trace_rays.comp").forLayout(bvh.layout).dispatch1D(rays.size(), 64);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   return hitBuffer.downloadAll<TestHit>();
 }
@@ -165,66 +169,130 @@ std::vector<TestRay> randomRays(const glm::vec3& lo, const glm::vec3& hi, size_t
   return rays;
 }
 
-TEST(BvhBuild, StructureInvariants) {
-  const Mesh mesh = randomSoup(5000, 1);
-  const Bvh bvh = buildBvh(mesh.positions, mesh.indices);
-  const size_t triangleCount = mesh.indices.size() / 3;
-  ASSERT_EQ(bvh.triangles.size(), triangleCount);
-  EXPECT_LT(bvh.stats.maxDepth, int(gpu::kBvhStackSize) - 1);
+// The layouts' children, as boxes and leaf ranges, whatever the node format.
+struct Child {
+  glm::vec3 lower, upper;
+  bool leaf = false;
+  std::uint32_t index = 0, count = 0;  // inner: the node; leaf: the first triangle and the count
+};
 
-  // Every scene triangle appears exactly once in the leaves, and each box contains its contents.
-  std::vector<int> seen(triangleCount, 0);
-  std::vector<std::pair<std::uint32_t, int>> stack{{0u, 0}};
-  size_t visitedLeafTriangles = 0;
-  auto inside = [](const gpu::BvhNode& n, const glm::vec3& p) {
-    return glm::all(glm::greaterThanEqual(p, n.boundsMin)) && glm::all(glm::lessThanEqual(p, n.boundsMax));
-  };
-  while (!stack.empty()) {
-    const auto [index, depth] = stack.back();
-    stack.pop_back();
-    const gpu::BvhNode& node = bvh.nodes[index];
-    if (node.triangleCount) {
-      for (std::uint32_t i = 0; i < node.triangleCount; ++i) {
-        const gpu::BvhTriangle& t = bvh.triangles[node.firstChildOrTriangle + i];
-        ++seen[t.sceneTriangle];
-        ++visitedLeafTriangles;
-        for (const glm::vec3& p : {t.v0, t.v0 + t.edge1, t.v0 + t.edge2}) ASSERT_TRUE(inside(node, p));
-      }
-      continue;
-    }
+std::vector<Child> childrenOf(const Bvh& bvh, std::uint32_t node) {
+  std::vector<Child> out;
+  if (bvh.layout == BvhLayout::Binary) {
+    const gpu::BvhNode& n = bvh.nodes[node];
     for (std::uint32_t c = 0; c < 2; ++c) {
-      const gpu::BvhNode& child = bvh.nodes[node.firstChildOrTriangle + c];
-      ASSERT_TRUE(inside(node, child.boundsMin) && inside(node, child.boundsMax));
-      stack.push_back({node.firstChildOrTriangle + c, depth + 1});
+      const gpu::BvhNode& child = bvh.nodes[n.firstChildOrTriangle + c];
+      out.push_back({child.boundsMin, child.boundsMax, child.triangleCount > 0,
+                     child.triangleCount > 0 ? child.firstChildOrTriangle : n.firstChildOrTriangle + c,
+                     child.triangleCount});
     }
+    return out;
   }
-  EXPECT_EQ(visitedLeafTriangles, triangleCount);
-  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
+  const gpu::BvhWideNode& n = bvh.wideNodes[node];
+  for (int c = 0; c < 4; ++c) {
+    const std::uint32_t ref = n.children[c];
+    if (ref == gpu::kBvhEmptyChild) continue;
+    Child child{{n.lowerX[c], n.lowerY[c], n.lowerZ[c]}, {n.upperX[c], n.upperY[c], n.upperZ[c]}};
+    child.leaf = (ref & gpu::kBvhLeaf) != 0;
+    child.index = child.leaf ? ref & gpu::kBvhLeafFirstMask : ref;
+    child.count = child.leaf ? ((ref >> gpu::kBvhLeafCountShift) & 15u) + 1 : 0;
+    out.push_back(child);
+  }
+  return out;
 }
 
-TEST(BvhBuild, IdenticalTrianglesStayShallow) {
+class BvhBuild : public ::testing::TestWithParam<BvhLayout> {};
+
+// Every scene triangle is in a leaf (more than once only where a spatial split cut it), every box holds
+// its children's, a leaf's box holds the triangles it alone references, and the depth fits the stack.
+TEST_P(BvhBuild, StructureInvariants) {
+  const Mesh mesh = randomSoup(5000, 1);
+  const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam());
+  const size_t triangleCount = mesh.indices.size() / 3;
+  ASSERT_GE(bvh.triangles.size(), triangleCount);
+  EXPECT_EQ(bvh.stats.triangleReferences, bvh.triangles.size());
+  EXPECT_LT(bvh.stats.maxDepth, int(gpu::kBvhStackSize) - 1);
+  EXPECT_LE(bvh.stats.maxLeafSize, 8u);
+
+  std::vector<int> seen(triangleCount, 0);
+  std::vector<std::pair<Child, std::uint32_t>> leaves;  // (leaf, its node)
+  std::vector<std::uint32_t> stack{0u};
+  size_t visitedLeafTriangles = 0;
+  auto inside = [](const Child& box, const glm::vec3& p) {
+    return glm::all(glm::greaterThanEqual(p, box.lower)) && glm::all(glm::lessThanEqual(p, box.upper));
+  };
+  if (GetParam() == BvhLayout::Binary) {
+    ASSERT_EQ(bvh.nodes[0].triangleCount, 0u) << "a root leaf: too few triangles";
+  }
+  std::vector<Child> parents{Child{glm::vec3(-1e30f), glm::vec3(1e30f)}};
+  while (!stack.empty()) {
+    const std::uint32_t node = stack.back();
+    const Child parent = parents.back();
+    stack.pop_back();
+    parents.pop_back();
+    for (const Child& child : childrenOf(bvh, node)) {
+      ASSERT_TRUE(inside(parent, child.lower) && inside(parent, child.upper));
+      if (!child.leaf) {
+        stack.push_back(child.index);
+        parents.push_back(child);
+        continue;
+      }
+      for (std::uint32_t i = 0; i < child.count; ++i) {
+        ++seen[bvh.triangles[child.index + i].sceneTriangle];
+        ++visitedLeafTriangles;
+      }
+      leaves.push_back({child, node});
+    }
+  }
+  EXPECT_EQ(visitedLeafTriangles, bvh.triangles.size());
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) { return s >= 1; }));
+  for (const auto& [leaf, node] : leaves)
+    for (std::uint32_t i = 0; i < leaf.count; ++i) {
+      const gpu::BvhTriangle& t = bvh.triangles[leaf.index + i];
+      if (seen[t.sceneTriangle] != 1) continue;
+      for (const glm::vec3& p : {t.v0, t.v0 + t.edge1, t.v0 + t.edge2}) ASSERT_TRUE(inside(leaf, p));
+    }
+}
+
+TEST_P(BvhBuild, IdenticalTrianglesStayShallow) {
   // 10,000 copies of one triangle: no split plane separates them; the builder must still terminate
   // with a bounded depth and small leaves.
   Mesh mesh;
   mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   for (int i = 0; i < 10000; ++i) mesh.indices.insert(mesh.indices.end(), {0, 1, 2});
-  const Bvh bvh = buildBvh(mesh.positions, mesh.indices);
+  const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam());
   EXPECT_LT(bvh.stats.maxDepth, int(gpu::kBvhStackSize) - 1);
   EXPECT_LE(bvh.stats.maxLeafSize, 8u);
 }
 
-TEST(BvhBuild, EmptyAndSingle) {
-  EXPECT_TRUE(buildBvh({}, {}).nodes.empty());
-  const Bvh one = buildBvh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
-  ASSERT_EQ(one.nodes.size(), 1u);
-  EXPECT_EQ(one.nodes[0].triangleCount, 1u);
+TEST_P(BvhBuild, EmptyAndSingle) {
+  const Bvh none = buildBvh({}, {}, GetParam());
+  EXPECT_TRUE(none.nodes.empty() && none.wideNodes.empty());
+  const Bvh one = buildBvh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}, GetParam());
+  ASSERT_EQ(one.triangles.size(), 1u);
+  if (GetParam() == BvhLayout::Binary) {
+    ASSERT_EQ(one.nodes.size(), 1u);
+    EXPECT_EQ(one.nodes[0].triangleCount, 1u);
+  } else {
+    ASSERT_EQ(one.wideNodes.size(), 1u);
+    const std::vector<Child> children = childrenOf(one, 0);
+    ASSERT_EQ(children.size(), 1u);
+    EXPECT_TRUE(children[0].leaf);
+    EXPECT_EQ(children[0].count, 1u);
+  }
 }
 
-class BvhTraceTest : public GLTest {};
+const auto kLayouts = ::testing::Values(BvhLayout::Binary, BvhLayout::Wide4);
+auto layoutName = [](const ::testing::TestParamInfo<BvhLayout>& info) {
+  return info.param == BvhLayout::Binary ? std::string("Binary") : std::string("Wide4");
+};
+INSTANTIATE_TEST_SUITE_P(Layouts, BvhBuild, kLayouts, layoutName);
 
-TEST_F(BvhTraceTest, MatchesBruteForceOnTriangleSoup) {
+class BvhTraceTest : public GLTest, public ::testing::WithParamInterface<BvhLayout> {};
+
+TEST_P(BvhTraceTest, MatchesBruteForceOnTriangleSoup) {
   const Mesh mesh = randomSoup(3000, 7);
-  const Bvh bvh = buildBvh(mesh.positions, mesh.indices);
+  const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam());
   const auto rays = randomRays(glm::vec3(-1.2f), glm::vec3(1.2f), 4000, 11);
   size_t excused = 0;
   EXPECT_EQ(compareWithBruteForce(mesh, bvh, rays, &excused), 0u);
@@ -232,18 +300,55 @@ TEST_F(BvhTraceTest, MatchesBruteForceOnTriangleSoup) {
   RecordProperty("excused", int(excused));
 }
 
-TEST_F(BvhTraceTest, MatchesBruteForceOnSponza) {
+// The soup 1e6 from the origin (float spacing 0.06 there): boxes, slabs and triangles at that scale.
+TEST_P(BvhTraceTest, MatchesBruteForceFarFromTheOrigin) {
+  Mesh mesh = randomSoup(3000, 7);
+  const glm::vec3 offset(1e6f, -1e6f, 1e6f);
+  for (glm::vec3& p : mesh.positions) p = offset + 100.0f * p;
+  const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam());
+  const auto rays = randomRays(offset - glm::vec3(120.0f), offset + glm::vec3(120.0f), 4000, 13);
+  size_t excused = 0;
+  EXPECT_EQ(compareWithBruteForce(mesh, bvh, rays, &excused), 0u);
+  EXPECT_LT(excused, rays.size() / 100);
+  std::printf("[ BVH      ] 1e6 from the origin: %zu rays, %zu excused as edge/tie cases\n", rays.size(), excused);
+}
+
+// One triangle (the root's only leaf), and 500 coincident copies of one triangle (no split separates
+// them): the hits are the brute force's (among the copies, one at the same distance).
+TEST_P(BvhTraceTest, MatchesBruteForceOnOneAndOnCoincidentTriangles) {
+  for (int copies : {1, 500}) {
+    Mesh mesh;
+    mesh.positions = {{-1, 0, -1}, {1, 0, -1}, {0, 0, 1}};
+    for (int i = 0; i < copies; ++i) mesh.indices.insert(mesh.indices.end(), {0, 1, 2});
+    const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam());
+    const auto rays = randomRays(glm::vec3(-1.5f), glm::vec3(1.5f), 2000, 17);
+    size_t excused = 0;
+    EXPECT_EQ(compareWithBruteForce(mesh, bvh, rays, &excused), 0u) << copies << " triangles";
+    // Among coincident copies every hit is a tie (any copy at the same t is right): only one triangle's
+    // edge cases are bounded.
+    if (copies == 1) {
+      EXPECT_LT(excused, rays.size() / 100);
+    }
+  }
+}
+
+TEST_P(BvhTraceTest, MatchesBruteForceOnSponza) {
   LGH_REQUIRE_SHARED_SCENE(path, "sponza_sun/sponza_sun.gltf");
   const Scene scene = loadScene(path);
   const Mesh mesh{scene.positions, scene.indices};
-  const Bvh bvh = buildBvh(mesh.positions, mesh.indices);
+  const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam());
   const auto rays = randomRays(scene.bounds.min, scene.bounds.max, 3000, 3);
   size_t excused = 0;
   EXPECT_EQ(compareWithBruteForce(mesh, bvh, rays, &excused), 0u);
   EXPECT_LT(excused, rays.size() / 100);
-  std::printf("[ BVH      ] sponza: %zu triangles, %zu nodes, depth %d, %zu rays, %zu excused as edge/tie cases\n",
-              scene.triangleCount(), bvh.stats.nodeCount, bvh.stats.maxDepth, rays.size(), excused);
+  std::printf(
+      "[ BVH      ] sponza: %zu triangles (%zu references), %zu nodes, depth %d, %zu rays, %zu excused as edge/tie "
+      "cases\n",
+      scene.triangleCount(), bvh.stats.triangleReferences, bvh.stats.nodeCount, bvh.stats.maxDepth, rays.size(),
+      excused);
 }
+
+INSTANTIATE_TEST_SUITE_P(Layouts, BvhTraceTest, kLayouts, layoutName);
 
 }  // namespace
 }  // namespace lgh::test
