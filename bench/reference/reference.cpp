@@ -127,24 +127,23 @@ OcclusionScene::~OcclusionScene() {
   if (device_) rtcReleaseDevice(device_);
 }
 
+bool OcclusionScene::occluded(const Ray& r) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray{};
+  ray.org_x = r.origin.x, ray.org_y = r.origin.y, ray.org_z = r.origin.z, ray.tnear = r.tMin;
+  ray.dir_x = r.direction.x, ray.dir_y = r.direction.y, ray.dir_z = r.direction.z, ray.tfar = r.tMax;
+  ray.mask = 0xffffffffu;
+  ray.flags = 0;
+  ray.time = 0.0f;
+  rtcOccluded1(scene_, &context, &ray);
+  return ray.tfar == -std::numeric_limits<float>::infinity();
+}
+
 std::vector<std::uint8_t> OcclusionScene::occluded(const std::vector<Ray>& rays, unsigned threads) const {
   std::vector<std::uint8_t> result(rays.size(), 0);
   parallelFor(
-      rays.size(), 4096, workerCount(threads),
-      [&](size_t i) {
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        RTCRay ray{};
-        const Ray& r = rays[i];
-        ray.org_x = r.origin.x, ray.org_y = r.origin.y, ray.org_z = r.origin.z, ray.tnear = r.tMin;
-        ray.dir_x = r.direction.x, ray.dir_y = r.direction.y, ray.dir_z = r.direction.z, ray.tfar = r.tMax;
-        ray.mask = 0xffffffffu;
-        ray.flags = 0;
-        ray.time = 0.0f;
-        rtcOccluded1(scene_, &context, &ray);
-        result[i] = ray.tfar == -std::numeric_limits<float>::infinity() ? 1 : 0;
-      },
-      [](size_t) {});
+      rays.size(), 4096, workerCount(threads), [&](size_t i) { result[i] = occluded(rays[i]) ? 1 : 0; }, [](size_t) {});
   return result;
 }
 

@@ -50,6 +50,8 @@ class OcclusionScene {
   // For each ray, 1 if any triangle is hit with tMin <= t <= tMax, else 0 (`threads` workers; 0: one
   // per hardware thread).
   std::vector<std::uint8_t> occluded(const std::vector<Ray>& rays, unsigned threads = 0) const;
+  // One ray, on the calling thread (rtcOccluded1).
+  bool occluded(const Ray& ray) const;
 
   RTCSceneTy* handle() const { return scene_; }
   // A hash of the triangles (vertex positions and indices): the occluders, for cache keys.

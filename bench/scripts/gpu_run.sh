@@ -2,7 +2,7 @@
 # The prepared GPU run: one call on a machine with an NVIDIA GPU (EGL device platform, no display)
 # builds the project, checks that EGL picked the device platform and a hardware renderer, runs the GL
 # tests that exercise the device path, then measures the paper's Tables 1-3 at 1280x720 with 100K and
-# 1M VPLs, the lightcuts' frame, and an equal-time sweep of the LGH against the lightcuts (Sponza 100K,
+# 1M VPLs, the lightcuts' frame, the BVH layouts' shadow rays against Embree, and an equal-time sweep of the LGH against the lightcuts (Sponza 100K,
 # 720p, against the Embree reference on a pixel subset), and writes CSV/JSON plus summary.md into the output
 # folder. Planned to finish in under 10 minutes on a GPU machine with 8+ cores (--no-build skips the build).
 #
@@ -196,6 +196,11 @@ if [[ $mode == full ]]; then rtslc_size=(--width 1920 --height 1080 --vpls 10000
 step rtslc_frame "$bench" frame --backend "$backend" --scene "$sponza" "${camera[@]}" "${rtslc_size[@]}" \
   --interleave 1 --lightcut-samples 8 --repeats "$repeats" --compare-cubes false --compare-targets false
 
+# The BVH layouts' pace on this device against Embree on this machine's cores: shadow-ray segments
+# between random surface points (lgh-bench rays; 4M rays on Sponza, 20K on the reduced run's scene).
+if [[ $mode == full ]]; then ray_count=4000000; else ray_count=20000; fi
+step rays "$bench" rays --backend "$backend" --scene "$sponza" --rays "$ray_count" --repeats "$repeats"
+
 # LGH or light tree on this device: a small equal-time sweep of both methods against the Embree reference
 # (the reference on a pixel subset, on this machine's CPU), one frame: Sponza atrium, 100K VPLs, 720p; the
 # fronts compared as curves by bench/sweep/plot_sweep.py (docs/measurements.md, "LGH or light tree?").
@@ -228,7 +233,7 @@ plot_python=/usr/bin/python3
   echo "## Tests"
   echo
   grep -E '^\[  (PASSED|FAILED)|tests? ran' "$out/tests.txt" | sed 's/^/    /'
-  for f in table1_2_build table2_light "${frame_vpls[@]/#/table3_frame_}" rtslc_frame equal_time_summary; do
+  for f in table1_2_build table2_light "${frame_vpls[@]/#/table3_frame_}" rtslc_frame rays equal_time_summary; do
     echo
     echo "## $f"
     echo

@@ -1,0 +1,211 @@
+#include "bench/engine/rays_bench.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/common/bench_setup.h"
+#include "bench/common/light_source.h"
+#include "bench/common/stats.h"
+#include "bench/common/table.h"
+#include "bench/reference/reference.h"
+#include "render/gl/buffer.h"
+#include "render/scene/scene_gpu.h"
+#include "render/scene/tracing_program.h"
+#include "shared/bindings.h"
+#include "shared/ray_offset.h"
+
+namespace lgh::bench {
+namespace {
+
+using Ray = reference::OcclusionScene::Ray;
+
+std::string number(double value, const char* format) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}  // (origin, tMin), (unit direction, tMax): the GPU's layout too
+
+// Segments between two random surface points (triangles drawn by area, points uniform on them): from the
+// first point offset along its normal toward the second, to 0.1% short of the second, as the frame's
+// shadow rays run from a surface to a light on another surface.
+std::vector<Ray> surfaceSegments(const Scene& scene, size_t count, unsigned seed) {
+  const size_t triangles = scene.indices.size() / 3;
+  std::vector<double> cumulative(triangles);
+  double total = 0;
+  auto vertex = [&](size_t t, int k) { return scene.positions[scene.indices[3 * t + size_t(k)]]; };
+  for (size_t t = 0; t < triangles; ++t) {
+    total += 0.5 * double(glm::length(glm::cross(vertex(t, 1) - vertex(t, 0), vertex(t, 2) - vertex(t, 0))));
+    cumulative[t] = total;
+  }
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto point = [&](glm::vec3& p, glm::vec3& n) {
+    const size_t t =
+        std::min(size_t(std::lower_bound(cumulative.begin(), cumulative.end(), unit(rng) * total) - cumulative.begin()),
+                 triangles - 1);
+    float a = float(unit(rng)), b = float(unit(rng));
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    const glm::vec3 v0 = vertex(t, 0), e1 = vertex(t, 1) - v0, e2 = vertex(t, 2) - v0;
+    p = v0 + a * e1 + b * e2;
+    const glm::vec3 c = glm::cross(e1, e2);
+    n = glm::length(c) > 0 ? glm::normalize(c) : glm::vec3(0, 1, 0);
+  };
+  std::vector<Ray> rays;
+  rays.reserve(count);
+  while (rays.size() < count) {
+    glm::vec3 p, n, q, m;
+    point(p, n);
+    point(q, m);
+    if (glm::dot(q - p, n) < 0) n = -n;  // leave from the side facing the other point
+    const glm::vec3 origin = gpu::offsetRayOrigin(p, n), toQ = q - origin;
+    const float length = glm::length(toQ);
+    if (!(length > 0)) continue;
+    rays.push_back({origin, 0.0f, toQ / length, length * (1.0f - 1e-3f)});
+  }
+  return rays;
+}
+
+struct Traced {
+  std::string tracer;
+  double ms = 0;  // median over the repeats
+  std::vector<std::uint8_t> blocked;
+  double bytesPerTriangle = 0;  // GPU layouts: nodes and triangle records per scene triangle
+};
+
+Traced traceOnGpu(const Scene& scene, BvhLayout layout, const gl::Buffer& rays, size_t count, int repeats) {
+  const SceneGpu gpu(scene, layout);
+  TracingProgram trace("trace_occlusion.comp");
+  const gl::Program& program = trace(gpu);
+  gl::Buffer blocked({"rays bench", "blocked"}, count * sizeof(GLuint));
+  gpu.bindForCompute();
+  rays.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
+  blocked.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
+  program.set("rayCount", GLuint(count));
+  std::vector<double> times;
+  for (int r = 0; r <= repeats; ++r) {  // the first is a warm-up
+    glFinish();
+    const auto start = std::chrono::steady_clock::now();
+    program.dispatch1D(count, 64);
+    glFinish();
+    if (r > 0)
+      times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  Traced out{layout == BvhLayout::Wide4 ? "GPU wide4" : "GPU binary", spreadOf(times).median, {}, 0};
+  for (GLuint b : blocked.downloadAll<GLuint>()) out.blocked.push_back(std::uint8_t(b));
+  const Bvh& bvh = gpu.bvh();
+  out.bytesPerTriangle = double(bvh.nodeBytes() + bvh.triangles.size() * sizeof(gpu::BvhTriangle)) /
+                         double(std::max<size_t>(scene.indices.size() / 3, 1));
+  return out;
+}
+
+// One rtcOccluded1 per ray on every hardware thread, timed alone. (OcclusionScene::occluded, the reference's,
+// polls its workers every 100 ms for its progress bar: up to 100 ms more per call.)
+std::vector<std::uint8_t> occludedByEmbree(const reference::OcclusionScene& scene, const std::vector<Ray>& rays,
+                                           unsigned threads) {
+  std::vector<std::uint8_t> result(rays.size(), 0);
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (;;) {
+      const size_t first = next.fetch_add(4096);
+      if (first >= rays.size()) return;
+      for (size_t i = first; i < std::min(rays.size(), first + 4096); ++i) result[i] = scene.occluded(rays[i]) ? 1 : 0;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  return result;
+}
+
+Traced traceWithEmbree(const Scene& scene, const std::vector<Ray>& rays, unsigned threads, int repeats) {
+  const reference::OcclusionScene occlusion(scene.positions, scene.indices);
+  Traced out{"Embree rtcOccluded1", 0, {}, 0};
+  std::vector<double> times;
+  for (int r = 0; r <= repeats; ++r) {  // the first is a warm-up
+    const auto start = std::chrono::steady_clock::now();
+    out.blocked = occludedByEmbree(occlusion, rays, threads);
+    if (r > 0)
+      times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  out.ms = spreadOf(times).median;
+  return out;
+}
+
+}  // namespace
+
+CLI::App* addRaysCommand(CLI::App& app, RaysBenchOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "rays", "shadow rays through each GPU BVH layout and through Embree, on the same rays and machine");
+  command
+      ->add_option("--scene", options.scene, "glTF scene (default: ../shared/scenes/sponza_sun, else data/cornell_box)")
+      ->check(CLI::ExistingFile);
+  command->add_option("--rays", options.rays, "rays per tracer")->check(CLI::Range(size_t(1), size_t(16000000)));
+  command->add_option("--repeats", options.repeats, "timed traces per tracer (the median is reported)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--seed", options.seed, "random seed of the rays");
+  command->add_option("--max-differ", options.maxDiffering,
+                      "share of the rays a GPU layout may answer otherwise than Embree before the exit code is 1");
+  addBackendOption(*command, options.backend);
+  return command;
+}
+
+int runRaysBench(const RaysBenchOptions& options) {
+  std::string why;
+  const std::filesystem::path path = chooseRenderScene(options.scene, why);
+  const Scene scene = loadScene(path);
+  const auto context = createContext(options.backend);
+  const std::vector<Ray> rays = surfaceSegments(scene, options.rays, options.seed);
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::printf(
+      "lgh-bench rays: %s (%s), %zu triangles, %zu shadow-ray segments between random surface points, %s, "
+      "%u hardware threads; median of %d traces each\n",
+      path.filename().string().c_str(), why.c_str(), scene.indices.size() / 3, rays.size(),
+      context->description().c_str(), threads, options.repeats);
+  gl::Buffer rayBuffer = gl::Buffer::fromVector({"rays bench", "rays"}, rays, 0);
+
+  std::vector<Traced> traced;
+  traced.push_back(traceWithEmbree(scene, rays, threads, options.repeats));
+  for (BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide4})
+    traced.push_back(traceOnGpu(scene, layout, rayBuffer, rays.size(), options.repeats));
+
+  const Traced& embree = traced[0];
+  TextTable table(
+      {"tracer", "ms", "M rays/s", "M rays/s per thread", "BVH B/triangle", "blocked", "differ from Embree"});
+  size_t mostDiffering = 0;
+  for (const Traced& t : traced) {
+    size_t blocked = 0, differ = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      blocked += t.blocked[i];
+      differ += t.blocked[i] != embree.blocked[i];
+    }
+    const double perSecond = double(rays.size()) / (t.ms * 1e-3) * 1e-6;
+    table.addRow({t.tracer, formatMs(t.ms), number(perSecond, "%.2f"), number(perSecond / threads, "%.2f"),
+                  t.bytesPerTriangle > 0 ? number(t.bytesPerTriangle, "%.0f") : "-",
+                  number(100.0 * double(blocked) / double(rays.size()), "%.1f%%"), formatCount(differ)});
+    mostDiffering = std::max(mostDiffering, differ);
+  }
+  table.print(stdout);
+  const double binary = traced[1].ms, wide = traced[2].ms;
+  std::printf("wide4 / binary %.2fx, binary / Embree %.2fx, wide4 / Embree %.2fx (pace: rays per second)\n",
+              binary / wide, embree.ms / binary, embree.ms / wide);
+  std::printf(
+      "(Embree differs where alpha-masked triangles are cut out: the GPU tests them, this Embree scene "
+      "does not; and on edges, where Embree is watertight and Moller-Trumbore is not.)\n");
+  // The exit code checks the tracers agree: at most options.maxDiffering of the rays answered otherwise.
+  if (double(mostDiffering) > options.maxDiffering * double(rays.size())) {
+    std::fprintf(stderr, "lgh-bench rays: a GPU layout differs from Embree on %zu of %zu rays (more than %g)\n",
+                 mostDiffering, rays.size(), options.maxDiffering);
+    return 1;
+  }
+  return 0;
+}
+
+}  // namespace lgh::bench

@@ -1,0 +1,18 @@
+#version 450 core
+// lgh-bench rays: one ray per invocation, any-hit through the scene's BVH (in the layout this program is
+// compiled for), as the frame's shadow rays are traced; 1 where something blocks it.
+layout(local_size_x = 64) in;
+#include "shared/dispatch.glsl"
+#include "shared/bvh_traverse.glsl"
+
+// Two vec4 per ray: (origin, tMin), (unit direction, tMax).
+layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Rays { vec4 rays[]; };
+layout(std430, binding = LGH_BINDING_PASS1) writeonly buffer Blocked { uint blocked[]; };
+uniform uint rayCount;
+
+void main() {
+  uint i = lghGlobalIndex();
+  if (i >= rayCount) return;
+  vec4 originTMin = rays[2u * i], directionTMax = rays[2u * i + 1u];
+  blocked[i] = traceAnyHit(originTMin.xyz, directionTMax.xyz, originTMin.w, directionTMax.w) ? 1u : 0u;
+}
