@@ -76,6 +76,9 @@ struct Traced {
   double ms = 0;  // median over the repeats
   std::vector<std::uint8_t> blocked;
   double bytesPerTriangle = 0;  // GPU layouts: nodes and triangle records per scene triangle
+  // GPU layouts, per ray: inner nodes whose children were tested, box tests, triangle tests (a separate,
+  // untimed trace with the traversal's counters compiled in)
+  double innerNodes = 0, boxTests = 0, triangleTests = 0;
 };
 
 Traced traceOnGpu(const Scene& scene, BvhLayout layout, const gl::Buffer& rays, size_t count, int repeats) {
@@ -99,6 +102,19 @@ Traced traceOnGpu(const Scene& scene, BvhLayout layout, const gl::Buffer& rays, 
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   Traced out{layout == BvhLayout::Wide4 ? "GPU wide4" : "GPU binary", spreadOf(times).median, {}, 0};
   for (GLuint b : blocked.downloadAll<GLuint>()) out.blocked.push_back(std::uint8_t(b));
+  // The same rays again with the counters: the work, not the time.
+  TracingProgram counting("trace_occlusion.comp", {{"LGH_BVH_COUNTERS", "1"}});
+  gl::Buffer work({"rays bench", "work per ray"}, count * sizeof(glm::uvec4));
+  work.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
+  counting(gpu).set("rayCount", GLuint(count));
+  counting(gpu).dispatch1D(count, 64);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  for (const glm::uvec4& w : work.downloadAll<glm::uvec4>()) {
+    out.innerNodes += w.x;
+    out.boxTests += w.y;
+    out.triangleTests += w.z;
+  }
+  for (double* sum : {&out.innerNodes, &out.boxTests, &out.triangleTests}) *sum /= double(std::max<size_t>(count, 1));
   const Bvh& bvh = gpu.bvh();
   out.bytesPerTriangle = double(bvh.nodeBytes() + bvh.triangles.size() * sizeof(gpu::BvhTriangle)) /
                          double(std::max<size_t>(scene.indices.size() / 3, 1));
@@ -177,8 +193,8 @@ int runRaysBench(const RaysBenchOptions& options) {
     traced.push_back(traceOnGpu(scene, layout, rayBuffer, rays.size(), options.repeats));
 
   const Traced& embree = traced[0];
-  TextTable table(
-      {"tracer", "ms", "M rays/s", "M rays/s per thread", "BVH B/triangle", "blocked", "differ from Embree"});
+  TextTable table({"tracer", "ms", "M rays/s", "M rays/s per thread", "inner nodes/ray", "box tests/ray",
+                   "triangle tests/ray", "BVH B/triangle", "blocked", "differ from Embree"});
   size_t mostDiffering = 0;
   for (const Traced& t : traced) {
     size_t blocked = 0, differ = 0;
@@ -187,7 +203,10 @@ int runRaysBench(const RaysBenchOptions& options) {
       differ += t.blocked[i] != embree.blocked[i];
     }
     const double perSecond = double(rays.size()) / (t.ms * 1e-3) * 1e-6;
+    const bool counted = t.boxTests > 0;
     table.addRow({t.tracer, formatMs(t.ms), number(perSecond, "%.2f"), number(perSecond / threads, "%.2f"),
+                  counted ? number(t.innerNodes, "%.1f") : "-", counted ? number(t.boxTests, "%.1f") : "-",
+                  counted ? number(t.triangleTests, "%.1f") : "-",
                   t.bytesPerTriangle > 0 ? number(t.bytesPerTriangle, "%.0f") : "-",
                   number(100.0 * double(blocked) / double(rays.size()), "%.1f%%"), formatCount(differ)});
     mostDiffering = std::max(mostDiffering, differ);

@@ -3,9 +3,10 @@
 // segments between random points of the scene's surfaces (area-weighted; from the surface offset as the
 // frame's rays are, to 0.1% short of the other point: incoherent, 20-90% blocked), traced any-hit by each
 // GPU BVH layout (glsl/trace_occlusion.comp) and by Embree (rtcOccluded1 on every hardware thread):
-// rays per second (Embree's also per thread), the layouts' node and triangle bytes per scene triangle,
+// rays per second (Embree's also per thread), the layouts' work per ray (inner nodes, box tests, triangle
+// tests: device-independent counts, from a second trace with counters), their bytes per scene triangle,
 // how many answers differ from Embree's, and the ratio lines wide4 / binary and each layout / Embree.
-// (Not yet: the frame's own rays dumped, camera rays, nodes visited per ray.)
+// (Not yet: the frame's own rays dumped, camera rays.)
 
 #include <CLI/CLI.hpp>
 #include <cstddef>

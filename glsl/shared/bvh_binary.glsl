@@ -37,6 +37,8 @@ bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, 
       }
     } else {
       uint left = current.firstChildOrTriangle, right = left + 1u;
+      LGH_BVH_COUNT(bvhInnerNodes, 1u);
+      LGH_BVH_COUNT(bvhBoxTests, 2u);
       float tLeft = bvhEnterBox(bvhNodes[left].boundsMin, bvhNodes[left].boundsMax, origin, invDirection, tMin, hit.t);
       float tRight = bvhEnterBox(bvhNodes[right].boundsMin, bvhNodes[right].boundsMax, origin, invDirection, tMin, hit.t);
       bool hitLeft = !isinf(tLeft), hitRight = !isinf(tRight);

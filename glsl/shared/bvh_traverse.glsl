@@ -13,6 +13,15 @@
 #error "a shader that traces rays is compiled for the scene's BVH layout (gl::TracingProgram defines LGH_BVH_LAYOUT)"
 #endif
 
+// With LGH_BVH_COUNTERS (lgh-bench rays) the traversal counts its work in these, per invocation: inner
+// nodes whose children's boxes it tested, those box tests, and triangle tests.
+#ifdef LGH_BVH_COUNTERS
+uint bvhInnerNodes = 0u, bvhBoxTests = 0u, bvhTriangleTests = 0u;
+#define LGH_BVH_COUNT(counter, n) counter += (n)
+#else
+#define LGH_BVH_COUNT(counter, n)
+#endif
+
 layout(std430, binding = LGH_BINDING_BVH_TRIANGLES) readonly buffer BvhTriangles { BvhTriangle bvhTriangles[]; };
 
 struct RayHit {
@@ -36,6 +45,7 @@ bool bvhTestLeaf(uint first, uint count, vec3 origin, vec3 direction, float tMin
   bool found = false;
   for (uint i = 0u; i < count; ++i) {
     uint triangleIndex = first + i;
+    LGH_BVH_COUNT(bvhTriangleTests, 1u);
     BvhTriangle tri = bvhTriangles[triangleIndex];
     vec3 tuv;
     if (intersectTriangle(origin, direction, tri.v0, tri.edge1, tri.edge2, tMin, hit.t, tuv) &&

@@ -33,6 +33,8 @@ bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, 
       continue;
     }
     BvhWideNode node = bvhNodes[entry];
+    LGH_BVH_COUNT(bvhInnerNodes, 1u);
+    LGH_BVH_COUNT(bvhBoxTests, 4u);
     // Slab tests of the four children at once, against (tMin, hit.t). (Differences first: lower x inv -
     // origin x inv would make inf - inf = NaN, a missed box, far from the origin along an axis-parallel ray.)
     vec4 x0 = (node.lowerX - origin.x) * invDirection.x, x1 = (node.upperX - origin.x) * invDirection.x;
