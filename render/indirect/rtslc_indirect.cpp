@@ -4,15 +4,19 @@
 
 namespace lgh {
 
+void RtslcIndirect::freeTargets() {
+  for (gl::Texture2D* t : {&irradiance_, &filtered_, &moments_, &sampledIrradiance_, &unshadowed_, &ratio_,
+                           &sampledLuminance_, &visibility_})
+    *t = {};
+}
+
 void RtslcIndirect::allocate(const RenderSettings& settings) {
   allocated_ = settings;
   const int w = settings.image.width, h = settings.image.height;
   auto make = [&](const char* owner, const char* name, GLenum format) {
     return gl::Texture2D({owner, name, kImageSize}, w, h, format);
   };
-  for (gl::Texture2D* t : {&irradiance_, &filtered_, &moments_, &sampledIrradiance_, &unshadowed_, &ratio_,
-                           &sampledLuminance_, &visibility_})
-    *t = {};
+  freeTargets();
   irradiance_ = make(passes::kLightcutSampling, "irradiance", GL_RGBA32F);
   if (ratioForm()) {
     unshadowed_ = make(passes::kLightcutSampling, "unshadowed irradiance", GL_RGBA32F);
@@ -30,9 +34,7 @@ void RtslcIndirect::allocate(const RenderSettings& settings) {
 }
 
 void RtslcIndirect::release(LightBuilds& builds) {
-  for (gl::Texture2D* t : {&irradiance_, &filtered_, &moments_, &sampledIrradiance_, &unshadowed_, &ratio_,
-                           &sampledLuminance_, &visibility_})
-    *t = {};
+  freeTargets();
   lightTree_ = {};
   builds.freedLightTree();
   rtslcPass_.release();

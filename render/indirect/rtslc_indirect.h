@@ -34,6 +34,7 @@ class RtslcIndirect final : public IndirectLight {
   LightTreePass lightTreePass_;
   RtslcPass rtslcPass_;
   IrradianceFilterPass filterPass_;
+  void freeTargets();  // every target, allocated or not
   bool ratioForm() const { return allocated_.rtslc.denoiser == RtslcDenoiser::Ratio; }
   ShadowFilterPass ratioFilterPass_;  // the ratio form's visibility
   GpuLightTree lightTree_;

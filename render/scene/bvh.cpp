@@ -144,7 +144,7 @@ class Flattener {
     gpu::BvhNode& out = bvh_.nodes[index];
     out.boundsMin = box.min;
     out.boundsMax = box.max;
-    note(box, depth);
+    note(depth);
     if (node->leaf) {
       const LeafNode& leaf = *static_cast<const LeafNode*>(node);
       out.firstChildOrTriangle = leafTriangles(leaf, box);
@@ -164,12 +164,13 @@ class Flattener {
 
   // An inner node's children into wideNodes[index]; a leaf root is the only child of the root.
   void wide(const BuildNode* node, size_t index, const Box& bounds, int depth) {
-    note(padded(bounds), depth);
+    const Box nodeBox = padded(bounds);
+    note(depth);
     const InnerNode* inner = node->leaf ? nullptr : static_cast<const InnerNode*>(node);
     const unsigned count = inner ? inner->childCount : 1;
     gpu::BvhWideNode out{};
     out.children = glm::uvec4(gpu::kBvhEmptyChild);
-    bvh_.stats.sahCost += double(gpu::kBvhWidth) * area(padded(bounds));
+    bvh_.stats.sahCost += double(gpu::kBvhWidth) * area(nodeBox);
     for (unsigned c = 0; c < count; ++c) {
       const BuildNode* child = inner ? inner->children[c] : node;
       const Box box = padded(inner ? toBox(inner->bounds[c]) : bounds);
@@ -178,7 +179,7 @@ class Flattener {
       out.lowerZ[int(c)] = box.min.z, out.upperZ[int(c)] = box.max.z;
       if (child->leaf) {
         const LeafNode& leaf = *static_cast<const LeafNode*>(child);
-        note(box, depth + 1);
+        note(depth + 1);
         const std::uint32_t first = leafTriangles(leaf, box);
         if (first > gpu::kBvhLeafFirstMask)
           throw std::runtime_error("BVH: more triangle references than 4-wide leaves address");
@@ -197,7 +198,7 @@ class Flattener {
 
  private:
   double area(const Box& b) const { return double(b.area()) / rootArea_; }
-  void note(const Box&, int depth) {
+  void note(int depth) {
     ++bvh_.stats.nodeCount;
     bvh_.stats.maxDepth = std::max(bvh_.stats.maxDepth, depth);
   }
