@@ -3,9 +3,7 @@
 #ifndef LGH_BINDINGS_H
 #define LGH_BINDINGS_H
 
-// Scene, bound once per frame (SSBOs).
-#define LGH_BINDING_BVH_NODES 0
-#define LGH_BINDING_BVH_TRIANGLES 1
+// Scene, bound once per frame (SSBOs; 0 and 1 unused).
 #define LGH_BINDING_SCENE_TRIANGLES 2
 #define LGH_BINDING_MATERIALS 3
 #define LGH_BINDING_PUNCTUAL_LIGHTS 4
@@ -51,6 +49,12 @@
 #define LGH_TEXTURE_ACCUM_PREVIOUS_POSITION 7  // accumulation history: the surfaces it belongs to
 #define LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL 8
 #define LGH_TEXTURE_ACCUM_HEAVIEST 9  // accumulation history: the frame with the largest mean weight
+// The scene's BVH (render/scene/gpu_bvh.h), where every shader that traces reads it: the last four of the
+// 16 units any compute shader has.
+#define LGH_TEXTURE_BVH_NODE_FLOATS 12
+#define LGH_TEXTURE_BVH_NODE_WORDS 13
+#define LGH_TEXTURE_BVH_TRIANGLE_FLOATS 14
+#define LGH_TEXTURE_BVH_TRIANGLE_WORDS 15
 
 // Image units, per pass.
 #define LGH_IMAGE_TILED_POSITION 0             // interleave split

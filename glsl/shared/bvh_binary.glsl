@@ -3,7 +3,15 @@
 #ifndef LGH_BVH_BINARY_GLSL
 #define LGH_BVH_BINARY_GLSL
 
-layout(std430, binding = LGH_BINDING_BVH_NODES) readonly buffer BvhNodes { BvhNode bvhNodes[]; };
+// BvhNode `index`'s box, and its (firstChildOrTriangle, triangleCount).
+void bvhNodeBounds(uint index, out vec3 boundsMin, out vec3 boundsMax) {
+  boundsMin = texelFetch(bvhNodeFloats, kBvhNodeTexels * int(index)).xyz;
+  boundsMax = texelFetch(bvhNodeFloats, kBvhNodeTexels * int(index) + 1).xyz;
+}
+uvec2 bvhNodeLinks(uint index) {
+  return uvec2(texelFetch(bvhNodeWords, kBvhNodeTexels * int(index)).w,
+               texelFetch(bvhNodeWords, kBvhNodeTexels * int(index) + 1).w);
+}
 
 // Slab test; returns the entry distance or +inf for a miss. Boxes are padded at build time, so a
 // ray grazing a flat (axis-aligned) box still enters it despite rounding.
@@ -16,31 +24,37 @@ float bvhEnterBox(vec3 boundsMin, vec3 boundsMax, vec3 origin, vec3 invDirection
   return tEnter <= tExit ? tEnter : uintBitsToFloat(0x7f800000u);
 }
 
+float bvhEnterNode(uint index, vec3 origin, vec3 invDirection, float tMin, float tMax) {
+  vec3 boundsMin, boundsMax;
+  bvhNodeBounds(index, boundsMin, boundsMax);
+  return bvhEnterBox(boundsMin, boundsMax, origin, invDirection, tMin, tMax);
+}
+
 // Walks the BVH; with anyHit it stops at the first hit inside (tMin, tMax). The build keeps the depth
 // below kBvhStackSize, and only one node is pushed per level, so the stack cannot overflow.
 bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, out RayHit hit) {
   hit = bvhNoHit(tMax);
-  if (bvhNodes.length() == 0) return false;
+  if (textureSize(bvhNodeFloats) < kBvhNodeTexels) return false;  // no triangles (a stub buffer)
   vec3 invDirection = bvhInverseDirection(direction);
 
   uint stack[kBvhStackSize];
   uint stackSize = 0u;
   uint node = 0u;
-  if (isinf(bvhEnterBox(bvhNodes[0].boundsMin, bvhNodes[0].boundsMax, origin, invDirection, tMin, tMax))) return false;
+  if (isinf(bvhEnterNode(0u, origin, invDirection, tMin, tMax))) return false;
   bool found = false;
   while (true) {
-    BvhNode current = bvhNodes[node];
-    if (current.triangleCount > 0u) {
-      if (bvhTestLeaf(current.firstChildOrTriangle, current.triangleCount, origin, direction, tMin, anyHit, hit)) {
+    uvec2 links = bvhNodeLinks(node);  // (firstChildOrTriangle, triangleCount)
+    if (links.y > 0u) {
+      if (bvhTestLeaf(links.x, links.y, origin, direction, tMin, anyHit, hit)) {
         found = true;
         if (anyHit) return true;
       }
     } else {
-      uint left = current.firstChildOrTriangle, right = left + 1u;
+      uint left = links.x, right = left + 1u;
       LGH_BVH_COUNT(bvhInnerNodes, 1u);
       LGH_BVH_COUNT(bvhBoxTests, 2u);
-      float tLeft = bvhEnterBox(bvhNodes[left].boundsMin, bvhNodes[left].boundsMax, origin, invDirection, tMin, hit.t);
-      float tRight = bvhEnterBox(bvhNodes[right].boundsMin, bvhNodes[right].boundsMax, origin, invDirection, tMin, hit.t);
+      float tLeft = bvhEnterNode(left, origin, invDirection, tMin, hit.t);
+      float tRight = bvhEnterNode(right, origin, invDirection, tMin, hit.t);
       bool hitLeft = !isinf(tLeft), hitRight = !isinf(tRight);
       if (hitLeft && hitRight) {
         // Nearer child first; the farther one waits on the stack.

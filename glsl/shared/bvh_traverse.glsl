@@ -22,7 +22,22 @@ uint bvhInnerNodes = 0u, bvhBoxTests = 0u, bvhTriangleTests = 0u;
 #define LGH_BVH_COUNT(counter, n)
 #endif
 
-layout(std430, binding = LGH_BINDING_BVH_TRIANGLES) readonly buffer BvhTriangles { BvhTriangle bvhTriangles[]; };
+// The BVH as texels (render/scene/gpu_bvh.h): a float and an integer view of its nodes and of its triangles,
+// whose structs (shared/bvh_types.h) are whole texels.
+layout(binding = LGH_TEXTURE_BVH_NODE_FLOATS) uniform samplerBuffer bvhNodeFloats;
+layout(binding = LGH_TEXTURE_BVH_NODE_WORDS) uniform usamplerBuffer bvhNodeWords;
+layout(binding = LGH_TEXTURE_BVH_TRIANGLE_FLOATS) uniform samplerBuffer bvhTriangleFloats;
+layout(binding = LGH_TEXTURE_BVH_TRIANGLE_WORDS) uniform usamplerBuffer bvhTriangleWords;
+
+// BvhTriangle `index`'s vertex and edges (its first three vec3s; the words beside them are read on a hit).
+void bvhTriangleGeometry(uint index, out vec3 v0, out vec3 edge1, out vec3 edge2) {
+  int texel = kBvhTriangleTexels * int(index);
+  v0 = texelFetch(bvhTriangleFloats, texel).xyz;
+  edge1 = texelFetch(bvhTriangleFloats, texel + 1).xyz;
+  edge2 = texelFetch(bvhTriangleFloats, texel + 2).xyz;
+}
+uint bvhSceneTriangle(uint index) { return texelFetch(bvhTriangleWords, kBvhTriangleTexels * int(index)).w; }
+uint bvhTriangleFlags(uint index) { return texelFetch(bvhTriangleWords, kBvhTriangleTexels * int(index) + 1).w; }
 
 struct RayHit {
   float t;
@@ -46,13 +61,14 @@ bool bvhTestLeaf(uint first, uint count, vec3 origin, vec3 direction, float tMin
   for (uint i = 0u; i < count; ++i) {
     uint triangleIndex = first + i;
     LGH_BVH_COUNT(bvhTriangleTests, 1u);
-    BvhTriangle tri = bvhTriangles[triangleIndex];
-    vec3 tuv;
-    if (intersectTriangle(origin, direction, tri.v0, tri.edge1, tri.edge2, tMin, hit.t, tuv) &&
-        ((tri.flags & kBvhTriangleAlphaMasked) == 0u || !surfaceCutOut(tri.sceneTriangle, tuv.yz))) {
+    vec3 v0, edge1, edge2, tuv;
+    bvhTriangleGeometry(triangleIndex, v0, edge1, edge2);
+    if (!intersectTriangle(origin, direction, v0, edge1, edge2, tMin, hit.t, tuv)) continue;
+    uint sceneTriangle = bvhSceneTriangle(triangleIndex);
+    if ((bvhTriangleFlags(triangleIndex) & kBvhTriangleAlphaMasked) == 0u || !surfaceCutOut(sceneTriangle, tuv.yz)) {
       hit.t = tuv.x;
       hit.barycentrics = tuv.yz;
-      hit.sceneTriangle = tri.sceneTriangle;
+      hit.sceneTriangle = sceneTriangle;
       hit.bvhTriangle = triangleIndex;
       found = true;
       if (anyHit) return true;

@@ -1,11 +1,18 @@
-// Flattened BVH as the GPU reads it (std430), written by render/scene/bvh.cpp in one of two node layouts
+// Flattened BVH as the GPU reads it, written by render/scene/bvh.cpp in one of two node layouts
 // (gpu::kBvhLayout*): binary nodes (BvhNode) or 4-wide nodes (BvhWideNode), over the same triangles. A
-// shader that traces is compiled for one layout (LGH_BVH_LAYOUT, shared/bvh_traverse.glsl).
+// shader that traces is compiled for one layout (LGH_BVH_LAYOUT, shared/bvh_traverse.glsl). The traversal
+// fetches them as 16-byte texels (render/scene/gpu_bvh.h), so each struct is whole texels, a vec3 and a
+// 32-bit word to a texel: the checks below pin that.
 #ifndef LGH_BVH_TYPES_H
 #define LGH_BVH_TYPES_H
 #include "shared/gpu_prelude.h"
 
 GPU_NAMESPACE_BEGIN
+
+// 16-byte texels per struct, as the traversal fetches them.
+GPU_CONST int kBvhNodeTexels = 2;
+GPU_CONST int kBvhTriangleTexels = 3;
+GPU_CONST int kBvhWideNodeTexels = 7;
 
 // Nodes in depth-first order. An interior node's two children are adjacent (firstChildOrTriangle and
 // firstChildOrTriangle + 1) so traversal can test both boxes and descend into the nearer first.
@@ -15,8 +22,10 @@ GPU_STRUCT(BvhNode) {
   vec3 boundsMax;
   uint triangleCount;  // 0 for interior nodes
 };
-GPU_CHECK_SIZE(BvhNode, 32);
+GPU_CHECK_SIZE(BvhNode, 16 * kBvhNodeTexels);
+GPU_CHECK_OFFSET(BvhNode, firstChildOrTriangle, 12);
 GPU_CHECK_OFFSET(BvhNode, boundsMax, 16);
+GPU_CHECK_OFFSET(BvhNode, triangleCount, 28);
 
 // Triangles in BVH leaf order, pre-arranged for Moller-Trumbore (a vertex and two edges).
 GPU_STRUCT(BvhTriangle) {
@@ -27,7 +36,11 @@ GPU_STRUCT(BvhTriangle) {
   vec3 edge2;          // v2 - v0
   float pad2;
 };
-GPU_CHECK_SIZE(BvhTriangle, 48);
+GPU_CHECK_SIZE(BvhTriangle, 16 * kBvhTriangleTexels);
+GPU_CHECK_OFFSET(BvhTriangle, sceneTriangle, 12);
+GPU_CHECK_OFFSET(BvhTriangle, edge1, 16);
+GPU_CHECK_OFFSET(BvhTriangle, flags, 28);
+GPU_CHECK_OFFSET(BvhTriangle, edge2, 32);
 
 // A 4-wide node: its children's boxes side by side (one slab test for all four), and the children: an
 // inner node's index, a leaf (kBvhLeaf | (count - 1) << kBvhLeafCountShift | first triangle), or
@@ -41,8 +54,19 @@ GPU_STRUCT(BvhWideNode) {
   vec4 upperZ;
   uvec4 children;
 };
-GPU_CHECK_SIZE(BvhWideNode, 112);
+GPU_CHECK_SIZE(BvhWideNode, 16 * kBvhWideNodeTexels);
 GPU_CHECK_OFFSET(BvhWideNode, children, 96);
+
+// A ray as benchmarks and tests hand it to the traversal, and as the shadow-ray pass records its own
+// (lgh-bench rays): the hits wanted lie in (tMin, tMax); tMax <= tMin: no ray.
+GPU_STRUCT(GpuRay) {
+  vec3 origin;
+  float tMin;
+  vec3 direction;  // unit
+  float tMax;
+};
+GPU_CHECK_SIZE(GpuRay, 32);
+GPU_CHECK_OFFSET(GpuRay, direction, 16);
 
 GPU_CONST uint kBvhLayoutBinary = 0u;
 GPU_CONST uint kBvhLayoutWide4 = 1u;

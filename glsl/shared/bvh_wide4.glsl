@@ -10,11 +10,17 @@
 #ifndef LGH_BVH_WIDE4_GLSL
 #define LGH_BVH_WIDE4_GLSL
 
-layout(std430, binding = LGH_BINDING_BVH_NODES) readonly buffer BvhWideNodes { BvhWideNode bvhNodes[]; };
+BvhWideNode bvhWideNode(uint index) {
+  int texel = kBvhWideNodeTexels * int(index);
+  return BvhWideNode(texelFetch(bvhNodeFloats, texel), texelFetch(bvhNodeFloats, texel + 1),
+                     texelFetch(bvhNodeFloats, texel + 2), texelFetch(bvhNodeFloats, texel + 3),
+                     texelFetch(bvhNodeFloats, texel + 4), texelFetch(bvhNodeFloats, texel + 5),
+                     texelFetch(bvhNodeWords, texel + 6));
+}
 
 bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, out RayHit hit) {
   hit = bvhNoHit(tMax);
-  if (bvhNodes.length() == 0) return false;
+  if (textureSize(bvhNodeFloats) < kBvhWideNodeTexels) return false;  // no triangles (a stub buffer)
   vec3 invDirection = bvhInverseDirection(direction);
 
   uint stack[kBvhStackSize];
@@ -32,7 +38,7 @@ bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, 
       }
       continue;
     }
-    BvhWideNode node = bvhNodes[entry];
+    BvhWideNode node = bvhWideNode(entry);
     LGH_BVH_COUNT(bvhInnerNodes, 1u);
     LGH_BVH_COUNT(bvhBoxTests, 4u);
     // Slab tests of the four children at once, against (tMin, hit.t). (Differences first: lower x inv -

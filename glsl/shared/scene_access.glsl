@@ -19,8 +19,9 @@ HitSurface hitSurface(vec3 origin, vec3 direction, RayHit hit) {
   SurfacePoint p = surfacePoint(hit.sceneTriangle, hit.barycentrics);
   s.albedo = surfaceAlbedo(p);
   s.emission = surfaceEmission(p);
-  BvhTriangle b = bvhTriangles[hit.bvhTriangle];
-  vec3 n = cross(b.edge1, b.edge2);
+  vec3 v0, edge1, edge2;
+  bvhTriangleGeometry(hit.bvhTriangle, v0, edge1, edge2);
+  vec3 n = cross(edge1, edge2);
   float len = length(n);
   s.normal = len > 0.0 ? n / len : -direction;
   if (dot(s.normal, direction) > 0.0) s.normal = -s.normal;

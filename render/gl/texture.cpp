@@ -37,6 +37,22 @@ int checkedSize(int size, int other) {
 }
 }  // namespace
 
+BufferTexture::BufferTexture(const Buffer& buffer, GLenum internalFormat) {
+  if (internalFormat != GL_RGBA32F && internalFormat != GL_RGBA32UI)
+    throw std::invalid_argument("BufferTexture: 16-byte texels only (GL_RGBA32F, GL_RGBA32UI)");
+  GLint maxTexels = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  const size_t texels = buffer.size() / 16;
+  if (texels > size_t(std::max(maxTexels, 0)))
+    throw OutOfMemory("GPU memory: " + buffer.label().text() + " is read as " + std::to_string(texels) +
+                      " texels, more than the " + std::to_string(maxTexels) +
+                      " one texture buffer may have here (GL_MAX_TEXTURE_BUFFER_SIZE)");
+  GLuint name = 0;
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &name);
+  handle_ = Handle<DeleteTexture>(name);
+  glTextureBuffer(name, internalFormat, buffer.id());
+}
+
 size_t textureBytes(GLenum internalFormat, int width, int height, int mipLevels) {
   size_t texels = 0;
   for (int level = 0; level < mipLevels; ++level)

@@ -1,10 +1,12 @@
 #pragma once
-// 2-D textures with immutable storage, and a framebuffer that bundles a set of them.
+// 2-D textures with immutable storage, buffers read as texels, and a framebuffer that bundles a set of
+// 2-D textures.
 
 #include <glm/glm.hpp>
 #include <initializer_list>
 #include <vector>
 
+#include "render/gl/buffer.h"
 #include "render/gl/memory.h"
 #include "render/gl/resource.h"
 
@@ -41,6 +43,21 @@ class Texture2D {
   Handle<DeleteTexture> handle_;
   int width_ = 0, height_ = 0;
   GLenum format_ = 0;
+};
+
+// A buffer's bytes read as texels (texelFetch on a samplerBuffer / usamplerBuffer) in a 16-byte format,
+// GL_RGBA32F or GL_RGBA32UI; the buffer must outlive it. Two of these over one buffer read its float and
+// its integer fields (a float view could flush the denormal bit patterns that small integers make).
+class BufferTexture {
+ public:
+  BufferTexture() = default;
+  // Throws gl::OutOfMemory when the buffer holds more texels than GL_MAX_TEXTURE_BUFFER_SIZE.
+  BufferTexture(const Buffer& buffer, GLenum internalFormat);
+
+  void bindTexture(GLuint unit) const { glBindTextureUnit(unit, handle_.id()); }
+
+ private:
+  Handle<DeleteTexture> handle_;
 };
 
 // Bytes of storage a texture of this format, size and mip chain takes (as laid out unpadded).

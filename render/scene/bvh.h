@@ -15,6 +15,7 @@ namespace lgh {
 // The GPU node layouts, in kBvhLayoutChoices' order (= gpu::kBvhLayout*).
 enum class BvhLayout { Binary, Wide4 };
 inline constexpr const char* kBvhLayoutChoices = "binary|wide4";
+inline constexpr BvhLayout kBvhLayouts[] = {BvhLayout::Binary, BvhLayout::Wide4};
 
 struct BvhBuildStats {
   size_t nodeCount = 0, leafCount = 0;

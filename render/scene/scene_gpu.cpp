@@ -114,9 +114,7 @@ SceneGpu::SceneGpu(const Scene& scene, BvhLayout layout) : scene_(scene) {
   for (const Material& m : scene.materials) materials_.push_back(toGpu(m));
   sceneLights_ = scene.lights;
   for (const PunctualLight& l : scene.lights) lights_.push_back(toGpu(l));
-  bvhNodes_ = layout == BvhLayout::Wide4 ? gl::Buffer::fromVector({passes::kScene, "BVH nodes"}, bvh_.wideNodes, 0)
-                                         : gl::Buffer::fromVector({passes::kScene, "BVH nodes"}, bvh_.nodes, 0);
-  bvhTriangles_ = gl::Buffer::fromVector({passes::kScene, "BVH triangles"}, bvh_.triangles, 0);
+  gpuBvh_ = GpuBvh(bvh_);
   materialBuffer_ = gl::Buffer::fromVector({passes::kScene, "materials"}, materials_, 0);
   lightBuffer_ = gl::Buffer::fromVector({passes::kScene, "punctual lights"}, lights_,
                                         GL_DYNAMIC_STORAGE_BIT);  // setPunctualLight updates it
@@ -145,8 +143,7 @@ SceneGpu::SceneGpu(const Scene& scene, BvhLayout layout) : scene_(scene) {
 }
 
 void SceneGpu::bindForCompute() const {
-  bvhNodes_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_NODES);
-  bvhTriangles_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_TRIANGLES);
+  gpuBvh_.bind();
   materialBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_MATERIALS);
   lightBuffer_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PUNCTUAL_LIGHTS);
   sceneTriangles_.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_SCENE_TRIANGLES);

@@ -11,6 +11,7 @@
 #include "render/gl/buffer.h"
 #include "render/gl/texture.h"
 #include "render/scene/bvh.h"
+#include "render/scene/gpu_bvh.h"
 #include "render/scene/scene.h"
 #include "shared/scene_types.h"
 
@@ -21,8 +22,8 @@ class SceneGpu {
   // The BVH in `layout`: what the tracing passes compile their traversal for (TracingProgram).
   explicit SceneGpu(const Scene& scene, BvhLayout layout = BvhLayout::Wide4);
 
-  // Binds the BVH, scene triangles, materials, textures and punctual lights at their LGH_BINDING_*
-  // slots for compute shaders.
+  // Binds the BVH (at its LGH_TEXTURE_BVH_* units), scene triangles, materials, textures and punctual
+  // lights (at their LGH_BINDING_* slots) for compute shaders.
   void bindForCompute() const;
   // Issues one draw per material range; `onMaterial` binds that material's textures and uniforms.
   template <typename OnMaterial>
@@ -59,7 +60,8 @@ class SceneGpu {
   unsigned lightsVersion_ = 0;
   gl::Buffer positions_, normals_, texcoords_, texcoords1_, colors_, indices_;
   gl::VertexArrayHandle vertexArray_;
-  gl::Buffer bvhNodes_, bvhTriangles_, materialBuffer_, lightBuffer_;
+  GpuBvh gpuBvh_;
+  gl::Buffer materialBuffer_, lightBuffer_;
   gl::Buffer sceneTriangles_, sceneVertices_, textureInfos_, texels_;  // for compute shaders at ray hits
   std::vector<gl::Texture2D> textures_;
   gl::Texture2D white_;

@@ -26,6 +26,7 @@
 #include "render/passes/lgh_build_pass.h"
 #include "render/renderer.h"
 #include "render/scene/bvh.h"
+#include "render/scene/gpu_bvh.h"
 #include "render/scene/scene_gpu.h"
 #include "render/scene/tracing_program.h"
 #include "shared/bindings.h"
@@ -168,13 +169,10 @@ TEST_F(ReferenceTest, VisibilityAgreesWithGpuBvh) {
   // Each BVH layout's answers (the scene's own, and the other built here).
   for (BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide4}) {
     const Bvh bvh = buildBvh(f.scene.positions, f.scene.indices, layout);
-    gl::Buffer nodes = layout == BvhLayout::Wide4 ? gl::Buffer::fromVector({"test", "data"}, bvh.wideNodes)
-                                                  : gl::Buffer::fromVector({"test", "data"}, bvh.nodes),
-               tris = gl::Buffer::fromVector({"test", "data"}, bvh.triangles);
+    const GpuBvh gpuBvh(bvh);
     gl::Buffer rayBuffer = gl::Buffer::fromVector({"test", "data"}, gpuRays),
                hitBuffer({"test", "hits"}, gpuRays.size() * sizeof(TestHit));
-    nodes.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_NODES);
-    tris.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_TRIANGLES);
+    gpuBvh.bind();
     rayBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
     hitBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
     TracingProgram("tests/trace_rays.comp").forLayout(layout).dispatch1D(gpuRays.size(), 64);

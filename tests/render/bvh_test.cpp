@@ -17,6 +17,7 @@
 #include "gl_test_env.h"
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
+#include "render/scene/gpu_bvh.h"
 #include "render/scene/scene.h"
 #include "render/scene/tracing_program.h"
 #include "shared/bindings.h"
@@ -104,13 +105,10 @@ BruteForceHit bruteForce(const Mesh& mesh, const TestRay& ray) {
 }
 
 std::vector<TestHit> traceOnGpu(const Bvh& bvh, const std::vector<TestRay>& rays) {
-  gl::Buffer nodes = bvh.layout == BvhLayout::Wide4 ? gl::Buffer::fromVector({"test", "data"}, bvh.wideNodes)
-                                                    : gl::Buffer::fromVector({"test", "data"}, bvh.nodes),
-             tris = gl::Buffer::fromVector({"test", "data"}, bvh.triangles);
+  const GpuBvh gpuBvh(bvh);
   gl::Buffer rayBuffer = gl::Buffer::fromVector({"test", "data"}, rays),
              hitBuffer({"test", "hits"}, rays.size() * sizeof(TestHit));
-  nodes.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_NODES);
-  tris.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_BVH_TRIANGLES);
+  gpuBvh.bind();
   rayBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   hitBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   TracingProgram("tests/trace_rays.comp").forLayout(bvh.layout).dispatch1D(rays.size(), 64);
@@ -313,10 +311,11 @@ TEST_P(BvhTraceTest, MatchesBruteForceFarFromTheOrigin) {
   std::printf("[ BVH      ] 1e6 from the origin: %zu rays, %zu excused as edge/tie cases\n", rays.size(), excused);
 }
 
-// One triangle (the root's only leaf), and 500 coincident copies of one triangle (no split separates
-// them): the hits are the brute force's (among the copies, one at the same distance).
-TEST_P(BvhTraceTest, MatchesBruteForceOnOneAndOnCoincidentTriangles) {
-  for (int copies : {1, 500}) {
+// No triangle (the GPU's buffers are stubs: every ray misses), one triangle (the root's only leaf), and
+// 500 coincident copies of one triangle (no split separates them): the hits are the brute force's (among
+// the copies, one at the same distance).
+TEST_P(BvhTraceTest, MatchesBruteForceOnNoneOneAndCoincidentTriangles) {
+  for (int copies : {0, 1, 500}) {
     Mesh mesh;
     mesh.positions = {{-1, 0, -1}, {1, 0, -1}, {0, 0, 1}};
     for (int i = 0; i < copies; ++i) mesh.indices.insert(mesh.indices.end(), {0, 1, 2});
