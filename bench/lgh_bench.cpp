@@ -3,7 +3,7 @@
 //   lgh-bench light [--vpls 1K,10K,100K,1M --interleave-vpls 100K ...]           (paper Fig. 5, interleaving)
 //   lgh-bench frame [--vpls 100K --shadow-samples 4 --interleave 1,2,4 ...]        (paper Table 3)
 //   lgh-bench memory [--vpls 1K,10K,100K,1M,4.5M --sizes 320x180,640x360 ...]      (GPU memory by owner)
-//   lgh-bench rays [--scene S --rays 1000000 --repeats 3]                            (the BVH against Embree)
+//   lgh-bench rays [--scene S --vpls 100K --rays 1000000 --repeats 3]               (the BVH against Embree)
 //   lgh-bench sweep [--preset readme|smoke --scene S@CAM --alpha ... --csv ...]      (docs/design.md §7: error vs time)
 //   lgh-bench reference --scene S@CAM --vpls 1M [--out ref.exr ...]                 (docs/design.md §13: MPI,
 //   resumable)

@@ -55,6 +55,12 @@ layout(rgba32f,
 layout(r32f, binding = LGH_IMAGE_SHADOW_SAMPLED_IRRADIANCE) uniform writeonly image2D sampledIrradianceOut;  // C
 
 layout(std140, binding = LGH_UBO_PASS) uniform ShadowRays { ShadowRayUniforms rays; };
+#ifdef LGH_SHADOW_RAYS_RECORD
+// The rays traced, recorded for lgh-bench rays: slot j of pixel (x, y) at (j H + y) W + x (image order, slot
+// by slot: neighbouring rays leave neighbouring pixels, as the frame's invocations trace them); tMax 0
+// where no ray was traced.
+layout(std430, binding = LGH_BINDING_PASS6) writeonly buffer RecordedRays { GpuRay recordedRays[]; };
+#endif
 
 // The light pass's selection (rays.selectFlags, as light_volume.frag read them).
 bool uniformSelection() { return (rays.selectFlags & kSelectUniform) != 0u; }
@@ -173,7 +179,16 @@ void main() {
       vec3 toLight = target - origin;
       float rayLength = length(toLight);
       // Stop short of the light by a relative margin: VPLs sit on surfaces, and so may a cluster's centre.
+#ifdef LGH_SHADOW_RAYS_UNTRACED
+      bool blocked = false;  // the pass timed without its rays (ShadowRayOptions::trace)
+#else
       bool blocked = rayLength > 0.0 && traceAnyHit(origin, toLight / rayLength, 0.0, rayLength * (1.0 - 1e-3));
+#endif
+#ifdef LGH_SHADOW_RAYS_RECORD
+      if (rayLength > 0.0)
+        recordedRays[(j * uint(frame.resolution.y) + p.y) * uint(frame.resolution.x) + p.x] =
+            GpuRay(origin, 0.0, toLight / rayLength, rayLength * (1.0 - 1e-3));
+#endif
       visible += weight * (blocked ? 0.0 : 1.0);
     }
   }

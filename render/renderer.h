@@ -68,7 +68,10 @@ class Renderer {
   const InputLights& inputLights() const { return inputLights_; }
   const GpuHierarchy& hierarchy() const { return lgh_.hierarchy(); }
   const ShadowSlots& shadowSlots() const { return lgh_.shadowSlots(); }  // the LGH's last selection
-  const GpuLightTree& lightTree() const { return rtslc_.lightTree(); }   // with indirect-method rtslc
+  // The LGH's shadow rays recorded into `rays` from the next frame on, until called with nullptr
+  // (lgh-bench rays traces a frame's own; ShadowRayTargets::recordedRays says how they are laid out).
+  void recordShadowRays(gl::Buffer* rays) { lgh_.recordShadowRays(rays); }
+  const GpuLightTree& lightTree() const { return rtslc_.lightTree(); }  // with indirect-method rtslc
 
  private:
   // What the settings switch on, which decides the targets the frame holds and what its passes keep.

@@ -75,6 +75,8 @@ struct ShadowSettings {
   float defensive = 0.0f;               // a grid light's selection importance adds this x its cosine-free contribution
   // Ablation of the paper's estimator (and of converging with targets = 0).
   float spread = 1.0f;  // jitter of a cluster's shadow-ray target, in its standard deviations
+  // false: the rays are not traced (none blocked), so that the pass's other work can be timed alone.
+  bool trace = true;
 };
 
 // The a-trous filter over the shadow ratio (ShadowFilterPass).
@@ -277,6 +279,9 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(
       shadows.spread,
       SettingInfo{"shadow-spread", "jitter of the paper's cluster targets, in standard deviations", 0, 16}.ablation());
+  visit(shadows.trace,
+        SettingInfo{"shadow-trace", "trace the shadow rays (false: none blocked; times the pass's other work)"}
+            .ablation());
   auto& filter = s.filter;
   visit(
       filter.passes,

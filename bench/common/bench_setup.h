@@ -64,6 +64,7 @@ class RenderBench {
 
   const std::filesystem::path& scenePath() const { return path_; }
   const std::string& sceneReason() const { return why_; }  // why this scene, for the output
+  const Scene& scene() const { return scene_; }
   const gl::Context& context() const { return *context_; }
   BenchRenderer& renderer() { return *renderer_; }
 

@@ -25,6 +25,8 @@ const std::string kCubeLightPass = "light pass (cubes)";  // not part of the fra
 // Not part of the frame either: the shadow rays aimed as in the paper (jittered cluster centres, S1 not
 // selected), the pass the default's "shadow targets" + "shadow rays" replace.
 const std::string kPaperShadowRays = "shadow rays (paper's targets)";
+// Nor this: the shadow-ray pass with its rays untraced (ShadowSettings::trace), the rest of its work.
+const std::string kUntracedShadowRays = "shadow rays, untraced";
 
 }  // namespace
 
@@ -47,6 +49,10 @@ CLI::App* addFrameCommand(CLI::App& app, FrameBenchOptions& options) {
   command
       ->add_option("--compare-targets", options.compareTargets,
                    "also time the shadow rays aimed as in the paper (row 'shadow rays (paper's targets)')")
+      ->capture_default_str();
+  command
+      ->add_option("--split-rays", options.splitRays,
+                   "also time the shadow rays untraced: the pass's time split into tracing and the rest")
       ->capture_default_str();
   command
       ->add_option("--lightcut-samples", options.lightcutSamples,
@@ -103,6 +109,12 @@ FrameTimes measureFrames(RenderBench& bench, const RenderSettings& settings, con
         paper.shadows.estimator = "paper";
         t.passMs[n][kPaperShadowRays].push_back(bench.renderer().render(paper).passMs(passes::kShadowRays));
       }
+      if (options.splitRays) {
+        // The same frame again with the rays untraced: the pass's time without its tracing.
+        RenderSettings untraced = s;
+        untraced.shadows.trace = false;
+        t.passMs[n][kUntracedShadowRays].push_back(bench.renderer().render(untraced).passMs(passes::kShadowRays));
+      }
     }
     for (const gl::MemoryRegistry::Owner& o : gl::memory().byOwner()) t.ownerBytes[n][o.owner] = o.bytes;
     t.heldBytes[n] = gl::memory().liveBytes();
@@ -148,7 +160,7 @@ void printFrames(RenderBench& bench, const RenderSettings& settings, const Frame
   std::printf("lgh-bench frame: %s (%s), %d x %d, %s\n", bench.scenePath().filename().string().c_str(),
               bench.sceneReason().c_str(), width, height, bench.context().description().c_str());
   std::printf(
-      "%s VPLs (%d bounce%s), L = %d, %s grid lights, alpha %.3g, k = %d (%s shadow rays per frame); "
+      "%s VPLs (%d bounce%s), L = %d, %s grid lights, alpha %.3g, k = %d (at most %s shadow rays per frame); "
       "median of %d frames, glFinish-bracketed ms\n\n",
       formatCount(t.lights.vpls).c_str(), bounces, bounces == 1 ? "" : "s", t.lights.levels,
       formatCount(gridLightsOf(t.lights)).c_str(), double(settings.lightPass.alpha), k,
@@ -186,6 +198,19 @@ void printFrames(RenderBench& bench, const RenderSettings& settings, const Frame
     }
     table.addRow(paper);
     table.addRow(ratio);
+  }
+  if (options.splitRays) {
+    // Tracing: the pass's median less its median untraced (each frame's pair differs by the rays alone).
+    // (Its rays are fewer than W x H x k: slots whose light adds nothing trace none; lgh-bench rays
+    // counts and traces a frame's own.)
+    std::vector<std::string> rest{"shadow rays: the rest (untraced)"}, tracing{"shadow rays: tracing"};
+    for (int n : options.interleave) {
+      const double untraced = spreadOf(t.passMs[n][kUntracedShadowRays]).median;
+      rest.push_back(formatMs(untraced));
+      tracing.push_back(formatMs(std::max(spreadOf(t.passMs[n][passes::kShadowRays]).median - untraced, 0.0)));
+    }
+    table.addRow(rest);
+    table.addRow(tracing);
   }
   std::vector<std::string> total{"total"}, frags{"fragments/px"};
   for (int n : options.interleave) {
@@ -300,6 +325,7 @@ void writeCsv(const std::string& path, const FrameBenchOptions& options, FrameTi
     }
     if (options.compareCubes) row(n, kCubeLightPass, t.passMs[n][kCubeLightPass], 0, "");
     if (options.compareTargets) row(n, kPaperShadowRays, t.passMs[n][kPaperShadowRays], 0, "");
+    if (options.splitRays) row(n, kUntracedShadowRays, t.passMs[n][kUntracedShadowRays], 0, "");
     for (const auto& [owner, bytes] : owners) csv << n << "," << owner << ",,,," << bytes << ",\n";
     row(n, "total", t.totalMs[n], t.heldBytes[n], std::to_string(t.peakBytes[n]));
   }

@@ -22,6 +22,7 @@ struct FrameBenchOptions {
   int repeats = 3;
   bool compareCubes = true;    // also time the light pass with the paper's cube volumes, frame by frame
   bool compareTargets = true;  // also time the shadow rays aimed at the paper's jittered cluster centres
+  bool splitRays = true;       // also time the shadow-ray pass untraced: its time split into tracing and the rest
   // The stochastic lightcuts' frame (--indirect-method rtslc) at this many samples per pixel, with 8x8 shared
   // and per-pixel cuts, and its tree build step by step (the paper's Table 1); 0: none.
   int lightcutSamples = 8;

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cstdio>
 #include <random>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,18 +20,20 @@
 #include "render/scene/scene_gpu.h"
 #include "render/scene/tracing_program.h"
 #include "shared/bindings.h"
+#include "shared/bvh_types.h"
 #include "shared/ray_offset.h"
 
 namespace lgh::bench {
 namespace {
 
 using Ray = reference::OcclusionScene::Ray;
+static_assert(sizeof(Ray) == sizeof(gpu::GpuRay), "the rays go to the GPU as they are");
 
 std::string number(double value, const char* format) {
   char text[64];
   std::snprintf(text, sizeof text, format, value);
   return text;
-}  // (origin, tMin), (unit direction, tMax): the GPU's layout too
+}
 
 // Segments between two random surface points (triangles drawn by area, points uniform on them): from the
 // first point offset along its normal toward the second, to 0.1% short of the second, as the frame's
@@ -100,7 +104,9 @@ Traced traceOnGpu(const Scene& scene, BvhLayout layout, const gl::Buffer& rays, 
       times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  Traced out{layout == BvhLayout::Wide4 ? "GPU wide4" : "GPU binary", spreadOf(times).median, {}, 0};
+  std::ostringstream name;
+  name << "GPU " << layout;
+  Traced out{name.str(), spreadOf(times).median, {}, 0};
   for (GLuint b : blocked.downloadAll<GLuint>()) out.blocked.push_back(std::uint8_t(b));
   // The same rays again with the counters: the work, not the time.
   TracingProgram counting("trace_occlusion.comp", {{"LGH_BVH_COUNTERS", "1"}});
@@ -155,44 +161,38 @@ Traced traceWithEmbree(const Scene& scene, const std::vector<Ray>& rays, unsigne
   return out;
 }
 
-}  // namespace
-
-CLI::App* addRaysCommand(CLI::App& app, RaysBenchOptions& options) {
-  CLI::App* command = app.add_subcommand(
-      "rays", "shadow rays through each GPU BVH layout and through Embree, on the same rays and machine");
-  command
-      ->add_option("--scene", options.scene, "glTF scene (default: ../shared/scenes/sponza_sun, else data/cornell_box)")
-      ->check(CLI::ExistingFile);
-  command->add_option("--rays", options.rays, "rays per tracer")->check(CLI::Range(size_t(1), size_t(16000000)));
-  command->add_option("--repeats", options.repeats, "timed traces per tracer (the median is reported)")
-      ->check(CLI::PositiveNumber);
-  command->add_option("--seed", options.seed, "random seed of the rays");
-  command->add_option("--max-differ", options.maxDiffering,
-                      "share of the rays a GPU layout may answer otherwise than Embree before the exit code is 1");
-  addBackendOption(*command, options.backend);
-  return command;
+// The shadow rays of one frame rendered with `settings` (the VPL budget raised to reach settings' VPL
+// count), as the shadow-ray pass traced them, in its recording's order (image order, slot by slot).
+std::vector<Ray> frameShadowRays(RenderBench& bench, RenderSettings settings, size_t& vpls) {
+  if (settings.indirectMethod != IndirectMethod::Lgh || settings.shadows.samples < 1)
+    throw std::invalid_argument(
+        "lgh-bench rays: the frame traces no shadow rays (indirect-method lgh, shadow-samples >= 1)");
+  const size_t slots = size_t(settings.image.width) * size_t(settings.image.height) * size_t(settings.shadows.samples);
+  gl::Buffer recorded({"rays bench", "the frame's shadow rays"}, slots * sizeof(gpu::GpuRay));
+  Renderer& renderer = bench.renderer().renderer();
+  renderer.recordShadowRays(&recorded);  // every frame overwrites them: the last one's stay
+  vpls = bench.renderer().renderToVplTarget(settings, size_t(settings.inputLights.vpls)).lights.vpls;
+  renderer.recordShadowRays(nullptr);
+  std::vector<Ray> rays;
+  for (const gpu::GpuRay& r : recorded.downloadAll<gpu::GpuRay>())
+    if (r.tMax > r.tMin) rays.push_back({r.origin, r.tMin, r.direction, r.tMax});
+  if (rays.empty()) throw std::runtime_error("lgh-bench rays: the frame traced no shadow rays (no indirect light?)");
+  return rays;
 }
 
-int runRaysBench(const RaysBenchOptions& options) {
-  std::string why;
-  const std::filesystem::path path = chooseRenderScene(options.scene, why);
-  const Scene scene = loadScene(path);
-  const auto context = createContext(options.backend);
-  const std::vector<Ray> rays = surfaceSegments(scene, options.rays, options.seed);
-  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  std::printf(
-      "lgh-bench rays: %s (%s), %zu triangles, %zu shadow-ray segments between random surface points, %s, "
-      "%u hardware threads; median of %d traces each\n",
-      path.filename().string().c_str(), why.c_str(), scene.indices.size() / 3, rays.size(),
-      context->description().c_str(), threads, options.repeats);
-  gl::Buffer rayBuffer = gl::Buffer::fromVector({"rays bench", "rays"}, rays, 0);
-
+std::vector<Traced> traceAll(const Scene& scene, const std::vector<Ray>& rays, unsigned threads, int repeats) {
+  const gl::Buffer buffer = gl::Buffer::fromVector({"rays bench", "rays"}, rays, 0);
   std::vector<Traced> traced;
-  traced.push_back(traceWithEmbree(scene, rays, threads, options.repeats));
-  for (BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide4})
-    traced.push_back(traceOnGpu(scene, layout, rayBuffer, rays.size(), options.repeats));
+  traced.push_back(traceWithEmbree(scene, rays, threads, repeats));
+  for (BvhLayout layout : kBvhLayouts) traced.push_back(traceOnGpu(scene, layout, buffer, rays.size(), repeats));
+  return traced;
+}
 
+// The set's table and summary line; returns the most answers a layout gave otherwise than Embree.
+size_t report(const char* set, const std::vector<Ray>& rays, const std::vector<Traced>& traced, unsigned threads,
+              BvhLayout defaultLayout) {
   const Traced& embree = traced[0];
+  std::printf("\n%s: %s rays\n", set, formatCount(rays.size()).c_str());
   TextTable table({"tracer", "ms", "M rays/s", "M rays/s per thread", "inner nodes/ray", "box tests/ray",
                    "triangle tests/ray", "BVH B/triangle", "blocked", "differ from Embree"});
   size_t mostDiffering = 0;
@@ -208,23 +208,79 @@ int runRaysBench(const RaysBenchOptions& options) {
                   counted ? number(t.innerNodes, "%.1f") : "-", counted ? number(t.boxTests, "%.1f") : "-",
                   counted ? number(t.triangleTests, "%.1f") : "-",
                   t.bytesPerTriangle > 0 ? number(t.bytesPerTriangle, "%.0f") : "-",
-                  number(100.0 * double(blocked) / double(rays.size()), "%.1f%%"), formatCount(differ)});
+                  number(100.0 * double(blocked) / double(std::max<size_t>(rays.size(), 1)), "%.1f%%"),
+                  formatCount(differ)});
     mostDiffering = std::max(mostDiffering, differ);
   }
   table.print(stdout);
-  const double binary = traced[1].ms, wide = traced[2].ms;
-  std::printf("wide4 / binary %.2fx, binary / Embree %.2fx, wide4 / Embree %.2fx (pace: rays per second)\n",
-              binary / wide, embree.ms / binary, embree.ms / wide);
+  const double binary = traced[1 + size_t(BvhLayout::Binary)].ms, chosen = traced[1 + size_t(defaultLayout)].ms;
+  std::ostringstream name;
+  name << defaultLayout;
+  std::printf("%s: default (%s) / binary %.2fx, default / Embree %.2fx (pace: rays per second)\n", set,
+              name.str().c_str(), binary / chosen, embree.ms / chosen);
+  return mostDiffering;
+}
+
+}  // namespace
+
+CLI::App* addRaysCommand(CLI::App& app, RaysBenchOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "rays", "shadow rays through each GPU BVH layout and through Embree, on the same rays and machine");
+  options.render.settings.inputLights.vpls = 100000;  // the bench's defaults (RaysBenchOptions)
+  options.render.settings.inputLights.bounces = 1;
+  addRenderBenchOptions(*command, options.render, {});
+  command->add_option("--frame-rays", options.frameRays, "also trace the frame's own shadow rays")
+      ->capture_default_str();
+  command->add_option("--rays", options.rays, "random surface-to-surface segments per tracer")
+      ->check(CLI::Range(size_t(1), size_t(16000000)))
+      ->capture_default_str();
+  command->add_option("--repeats", options.repeats, "timed traces per tracer (the median is reported)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--ray-seed", options.seed, "random seed of the segments");
+  command->add_option("--max-differ", options.maxDiffering,
+                      "share of a set's rays a GPU layout may answer otherwise than Embree before the exit code is 1");
+  return command;
+}
+
+int runRaysBench(const RaysBenchOptions& options) {
+  RenderBench bench(options.render);
+  const Scene& scene = bench.scene();
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  const RenderSettings& settings = options.render.settings;
+  std::printf("lgh-bench rays: %s (%s), %zu triangles, %s, %u hardware threads; median of %d traces each\n",
+              bench.scenePath().filename().string().c_str(), bench.sceneReason().c_str(), scene.indices.size() / 3,
+              bench.context().description().c_str(), threads, options.repeats);
+
+  struct Set {
+    std::string name;
+    std::vector<Ray> rays;
+  };
+  std::vector<Set> sets;
+  if (options.frameRays) {
+    size_t vpls = 0;
+    std::vector<Ray> rays = frameShadowRays(bench, settings, vpls);
+    char name[160];
+    std::snprintf(name, sizeof name, "the frame's shadow rays (%d x %d, %s VPLs, k = %d)", settings.image.width,
+                  settings.image.height, formatCount(vpls).c_str(), settings.shadows.samples);
+    sets.push_back({name, std::move(rays)});
+  }
+  sets.push_back({"random surface-to-surface segments", surfaceSegments(scene, options.rays, options.seed)});
+
+  size_t worst = 0;
+  for (const Set& set : sets) {
+    const size_t differ = report(set.name.c_str(), set.rays, traceAll(scene, set.rays, threads, options.repeats),
+                                 threads, settings.bvhLayout);
+    if (double(differ) > options.maxDiffering * double(set.rays.size())) {
+      std::fprintf(stderr, "lgh-bench rays: %s: a GPU layout differs from Embree on %zu of %zu rays (more than %g)\n",
+                   set.name.c_str(), differ, set.rays.size(), options.maxDiffering);
+      worst = std::max<size_t>(worst, 1);
+    }
+  }
   std::printf(
       "(Embree differs where alpha-masked triangles are cut out: the GPU tests them, this Embree scene "
       "does not; and on edges, where Embree is watertight and Moller-Trumbore is not.)\n");
-  // The exit code checks the tracers agree: at most options.maxDiffering of the rays answered otherwise.
-  if (double(mostDiffering) > options.maxDiffering * double(rays.size())) {
-    std::fprintf(stderr, "lgh-bench rays: a GPU layout differs from Embree on %zu of %zu rays (more than %g)\n",
-                 mostDiffering, rays.size(), options.maxDiffering);
-    return 1;
-  }
-  return 0;
+  return worst > 0 ? 1 : 0;
 }
 
 }  // namespace lgh::bench

@@ -103,9 +103,10 @@ LightPassOptions LghIndirect::lightPassOptions(const IndirectFrame& frame) const
   return o;
 }
 
-ShadowRayOptions LghIndirect::shadowRayOptions(const LightPassOptions& lightPass) {
+ShadowRayOptions LghIndirect::shadowRayOptions(const IndirectFrame& frame, const LightPassOptions& lightPass) {
   ShadowRayOptions o;
   o.shadows = lightPass.shadows;
+  o.trace = frame.settings.shadows.trace;
   o.alpha = lightPass.pass.alpha;
   o.startLevel = lightPass.pass.startLevel;
   o.bruteForce = lightPass.pass.bruteForce;
@@ -164,7 +165,7 @@ LightStats LghIndirect::estimate(const IndirectFrame& frame) {
     frame.timed(passes::kShadowRays, [&] {
       shadowRayPass_.execute({frame.scene, frame.gbuffer, frame.lights.lights, frame.lights.count, hierarchy_,
                               shadowTargets_, shadowSlots_, target.layout, target.irradiance},
-                             shadowRayOptions(options), {rawRatio_, sampledIrradiance_});
+                             shadowRayOptions(frame, options), {rawRatio_, sampledIrradiance_, recordedRays_});
     });
   LightStats stats;
   stats.lightsPerLevel = draws.lightsPerLevel;

@@ -39,6 +39,9 @@ class LghIndirect final : public IndirectLight {
   static LghBuildOptions buildOptions(const SceneGpu& scene, const RenderSettings& settings);
   const GpuHierarchy& hierarchy() const { return hierarchy_; }
   const ShadowSlots& shadowSlots() const { return shadowSlots_; }  // the last frame's selection
+  // The frames' shadow rays recorded into `rays` from the next frame on (ShadowRayTargets::recordedRays),
+  // until called with nullptr; the buffer is the caller's.
+  void recordShadowRays(gl::Buffer* rays) { recordedRays_ = rays; }
 
  private:
   // The targets freed (allocate() makes the new set after); the shadow sampling's slots, targets and passes freed.
@@ -53,7 +56,7 @@ class LghIndirect final : public IndirectLight {
   void resolveShadows(const IndirectFrame& frame);
   LightPassOptions lightPassOptions(const IndirectFrame& frame) const;
   // What the shadow rays read of the light pass that filled the slots, to recompute its selection.
-  static ShadowRayOptions shadowRayOptions(const LightPassOptions& lightPass);
+  static ShadowRayOptions shadowRayOptions(const IndirectFrame& frame, const LightPassOptions& lightPass);
   ShadowFilterOptions shadowFilterOptions(const IndirectFrame& frame) const;
   // The light pass's surfaces and targets: the tiles when interleaving, else the image's (slots sized to them).
   LightPassTarget lightPassTarget(const IndirectFrame& frame);
@@ -71,14 +74,15 @@ class LghIndirect final : public IndirectLight {
   ShadowEstimator shadowEstimator_;       // resolved each frame by resolveShadows()
   std::set<std::string> reportedLimits_;  // what a limit switched off, said once
 
-  Tiles tiles_;                      // interleaved surfaces and light-pass targets (n > 1)
-  gl::Texture2D irradiance_;         // full resolution
-  gl::Texture2D fragmentCounts_;     // R32UI, light-pass fragments per pixel (settings.overdraw)
-  ShadowSlots shadowSlots_;          // k selected lights per light-pass pixel
-  ShadowTargets shadowTargets_;      // input lights drawn per grid light as the rays' targets
-  gl::Texture2D rawRatio_;           // r: visibility ratio from the shadow rays (accumulated; a: frames)
-  gl::Texture2D sampledIrradiance_;  // R32F: the irradiance luminance the shadow samples were drawn against
-  gl::Texture2D visibility_;         // r: filtered ratio
+  Tiles tiles_;                         // interleaved surfaces and light-pass targets (n > 1)
+  gl::Texture2D irradiance_;            // full resolution
+  gl::Texture2D fragmentCounts_;        // R32UI, light-pass fragments per pixel (settings.overdraw)
+  gl::Buffer* recordedRays_ = nullptr;  // recordShadowRays
+  ShadowSlots shadowSlots_;             // k selected lights per light-pass pixel
+  ShadowTargets shadowTargets_;         // input lights drawn per grid light as the rays' targets
+  gl::Texture2D rawRatio_;              // r: visibility ratio from the shadow rays (accumulated; a: frames)
+  gl::Texture2D sampledIrradiance_;     // R32F: the irradiance luminance the shadow samples were drawn against
+  gl::Texture2D visibility_;            // r: filtered ratio
 };
 
 }  // namespace lgh

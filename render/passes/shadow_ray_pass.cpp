@@ -1,17 +1,22 @@
 #include "render/passes/shadow_ray_pass.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <vector>
 
 #include "render/gl/debug.h"
 #include "render/pass_names.h"
 #include "shared/bindings.h"
+#include "shared/bvh_types.h"
 #include "shared/shadow_ray_types.h"
 
 namespace lgh {
 
 ShadowRayPass::ShadowRayPass()
-    : program_("shadow_rays.comp"), uniforms_(passes::kShadowRays, sizeof(gpu::ShadowRayUniforms)) {}
+    : program_("shadow_rays.comp"),
+      untraced_("shadow_rays.comp", {{"LGH_SHADOW_RAYS_UNTRACED", "1"}}),
+      recording_("shadow_rays.comp", {{"LGH_SHADOW_RAYS_RECORD", "1"}}),
+      uniforms_(passes::kShadowRays, sizeof(gpu::ShadowRayUniforms)) {}
 
 void ShadowRayPass::release() { uniforms_.release(); }
 
@@ -52,7 +57,17 @@ void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& o
   out.rawRatio.bindImage(LGH_IMAGE_SHADOW_RATIO, GL_WRITE_ONLY);
   out.sampledIrradiance.bindImage(LGH_IMAGE_SHADOW_SAMPLED_IRRADIANCE, GL_WRITE_ONLY);
   uniforms_.bind(0, LGH_UBO_PASS);
-  program_(in.scene).dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
+  TracingProgram* program = &program_;
+  if (out.recordedRays) {
+    const size_t rays = size_t(in.gbuffer.width) * size_t(in.gbuffer.height) * size_t(in.slots.k);
+    if (out.recordedRays->size() < rays * sizeof(gpu::GpuRay))
+      throw std::invalid_argument("ShadowRayPass: the buffer recording the rays holds fewer than W x H x k");
+    out.recordedRays->clear();
+    out.recordedRays->bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS6);
+    program = &recording_;
+  }
+  if (!options.trace) program = &untraced_;
+  (*program)(in.scene).dispatch2D(in.gbuffer.width, in.gbuffer.height, {8, 8});
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   gl::checkErrors("shadow rays");
 }

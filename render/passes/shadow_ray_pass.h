@@ -45,11 +45,15 @@ struct ShadowRayOptions {
   bool bruteForce = false;     // every light weight 1
   float clampDistance = 0.0f;  // d_c, resolved
   unsigned frameSeed = 0;
+  bool trace = true;  // false: no ray is traced (none blocked), to time the pass's other work alone
 };
 
 struct ShadowRayTargets {
   gl::Texture2D& rawRatio;           // RGBA32F
   gl::Texture2D& sampledIrradiance;  // R32F
+  // The rays traced, recorded (lgh-bench rays), or nullptr: a gpu::GpuRay per slot of every pixel, slot j of
+  // pixel (x, y) at (j H + y) W + x, tMax 0 where none was traced; at least W x H x k of them.
+  gl::Buffer* recordedRays = nullptr;
 };
 
 class ShadowRayPass {
@@ -61,6 +65,8 @@ class ShadowRayPass {
 
  private:
   TracingProgram program_;
+  TracingProgram untraced_;     // options.trace false
+  TracingProgram recording_;    // out.recordedRays: the same pass with every ray visible
   gl::UniformBlocks uniforms_;  // one gpu::ShadowRayUniforms
 };
 

@@ -15,7 +15,9 @@
 #include "render/image_compare.h"
 #include "render/renderer.h"
 #include "render/scene/scene_gpu.h"
+#include "shared/bvh_types.h"
 #include "shared/light_pass_types.h"
+#include "shared/ray_offset.h"
 
 namespace lgh::test {
 namespace {
@@ -239,6 +241,60 @@ TEST_F(ShadowTest, ImportanceSelectionBeatsUniform) {
   EXPECT_LT(e["importance k=4 raw"], e["uniform k=4 raw"]);
   EXPECT_LT(e["importance k=4 raw"], e["importance k=1 raw"]);
   EXPECT_LT(e["importance k=4 filtered"], e["importance k=4 raw"]);
+}
+
+// The pass's two bench modes (lgh-bench frame, rays): recorded, its rays are the ones it traced, one per
+// slot of a valid pixel at (j H + y) W + x, leaving that pixel's surface (offset along its normal) and
+// stopping short of a light; untraced (ShadowRayOptions::trace false), no ray is blocked, so the raw ratio
+// is 1 everywhere, where the traced frame's is not.
+TEST_F(ShadowTest, RecordedRaysAreTheTracedOnesAndUntracedOnesBlockNothing) {
+  const Scene scene = loadScene(sourceDir() / "data/cornell_box.gltf");
+  const SceneGpu gpu(scene);
+  RenderSettings settings;
+  settings.image.width = 64;
+  settings.image.height = 36;
+  settings.inputLights.vpls = 2000;
+  settings.inputLights.bounces = 1;
+  settings.shadows.samples = 4;
+  settings.filter.passes = 0;  // the ratio AOV is the raw ratio
+  Renderer renderer(gpu, settings);
+  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
+  const int w = settings.image.width, h = settings.image.height, k = settings.shadows.samples;
+  gl::Buffer recorded({"test", "recorded rays"}, size_t(w * h * k) * sizeof(gpu::GpuRay));
+  renderer.recordShadowRays(&recorded);
+  renderer.render(view);
+  renderer.recordShadowRays(nullptr);
+  const std::vector<gpu::GpuRay> rays = recorded.downloadAll<gpu::GpuRay>();
+  const ImageRGBA position = renderer.readImage(Aov::Position), normal = renderer.readImage(Aov::Normal);
+  size_t traced = 0, fromTheirPixel = 0;
+  for (int j = 0; j < k; ++j)
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const gpu::GpuRay& r = rays[size_t((j * h + y) * w + x)];
+        if (!(r.tMax > r.tMin)) continue;
+        ++traced;
+        const glm::vec3 p(position.at(x, h - 1 - y)), n(normal.at(x, h - 1 - y));
+        fromTheirPixel += glm::distance(r.origin, gpu::offsetRayOrigin(p, n)) < 1e-5f &&
+                          std::abs(glm::length(r.direction) - 1.0f) < 1e-4f;
+      }
+  std::printf("  %zu rays recorded of %d slots, %zu from their pixel's surface\n", traced, w * h * k, fromTheirPixel);
+  EXPECT_GT(traced, size_t(w * h * k) / 4);
+  EXPECT_EQ(fromTheirPixel, traced);
+
+  auto meanRatio = [&] {
+    const ImageRGBA ratio = renderer.readImage(Aov::Ratio);
+    double sum = 0;
+    for (const glm::vec4& v : ratio.pixels) sum += v.r;
+    return sum / double(ratio.pixels.size());
+  };
+  const double tracedRatio = meanRatio();
+  settings.shadows.trace = false;
+  renderer.setSettings(settings);
+  renderer.render(view);
+  const double untracedRatio = meanRatio();
+  std::printf("  mean raw ratio traced %.4f, untraced %.6f\n", tracedRatio, untracedRatio);
+  EXPECT_LT(tracedRatio, 0.99);
+  EXPECT_DOUBLE_EQ(untracedRatio, 1.0);
 }
 
 }  // namespace
