@@ -129,10 +129,10 @@ enum class IndirectMethod { None, Lgh, Rtslc };
 struct RenderSettings {
   ImageSettings image;
   IndirectMethod indirectMethod = IndirectMethod::Lgh;
-  bool directShadows = true;               // DirectLightPass: one shadow ray per punctual light
-  float clampDistance = 0.0f;              // d_c in metres; 0 = automatic (1e-2 of the scene diagonal)
-  float gpuMemoryLimit = 0;                // MB the engine's GL objects may hold; 0: the device's reported free memory
-  BvhLayout bvhLayout = BvhLayout::Wide4;  // the BVH the rays traverse, built when the scene loads (SceneGpu)
+  bool directShadows = true;   // DirectLightPass: one shadow ray per punctual light
+  float clampDistance = 0.0f;  // d_c in metres; 0 = automatic (1e-2 of the scene diagonal)
+  float gpuMemoryLimit = 0;    // MB the engine's GL objects may hold; 0: the device's reported free memory
+  BvhLayout bvhLayout = BvhLayout::Compressed8;  // the BVH the rays traverse, built when the scene loads (SceneGpu)
   InputLightSettings inputLights;
   HierarchySettings hierarchy;
   LightPassSettings lightPass;

@@ -79,6 +79,8 @@ bool bvhTestLeaf(uint first, uint count, vec3 origin, vec3 direction, float tMin
 
 #if LGH_BVH_LAYOUT == 1  // kBvhLayoutWide4
 #include "shared/bvh_wide4.glsl"
+#elif LGH_BVH_LAYOUT == 2  // kBvhLayoutCompressed8
+#include "shared/bvh_compressed8.glsl"
 #else
 #include "shared/bvh_binary.glsl"
 #endif

@@ -15,11 +15,26 @@
 namespace lgh {
 namespace {
 
-constexpr unsigned kMaxLeafSize = 8;
-// The traversals' stacks: binary pushes at most one node per level, 4-wide at most three (four children
-// entered, one taken at once), so these depths keep them within gpu::kBvhStackSize with room to spare.
+constexpr unsigned kMaxLeafSize = 8;  // compressed8: gpu::kBvhCompressedMaxLeafSize
+constexpr unsigned kMaxWidth = gpu::kBvhCompressedWidth;
+// The traversals' stacks: binary pushes at most one node per level, 4-wide at most three net (four
+// children entered, one taken at once), compressed 8-wide one (its node and the slots left), so these
+// depths keep them within gpu::kBvhStackSize.
 constexpr unsigned kMaxBinaryDepth = gpu::kBvhStackSize - 4;
 constexpr unsigned kMaxWideDepth = (gpu::kBvhStackSize - 4) / (gpu::kBvhWidth - 1);
+constexpr unsigned kMaxCompressedDepth = gpu::kBvhStackSize - 1;  // one entry per level above the current
+
+unsigned maxDepth(BvhLayout layout) {
+  return layout == BvhLayout::Binary  ? kMaxBinaryDepth
+         : layout == BvhLayout::Wide4 ? kMaxWideDepth
+                                      : kMaxCompressedDepth;
+}
+unsigned maxWidth(BvhLayout layout) {
+  return layout == BvhLayout::Binary ? 2 : layout == BvhLayout::Wide4 ? gpu::kBvhWidth : gpu::kBvhCompressedWidth;
+}
+unsigned maxLeafSize(BvhLayout layout) {
+  return layout == BvhLayout::Compressed8 ? gpu::kBvhCompressedMaxLeafSize : kMaxLeafSize;
+}
 
 struct Box {
   glm::vec3 min{std::numeric_limits<float>::max()}, max{-std::numeric_limits<float>::max()};
@@ -53,8 +68,8 @@ struct BuildNode {
 };
 struct InnerNode : BuildNode {
   unsigned childCount = 0;
-  BuildNode* children[gpu::kBvhWidth] = {};
-  RTCBounds bounds[gpu::kBvhWidth] = {};
+  BuildNode* children[kMaxWidth] = {};
+  RTCBounds bounds[kMaxWidth] = {};
 };
 struct LeafNode : BuildNode {
   unsigned count = 0;
@@ -64,6 +79,7 @@ struct LeafNode : BuildNode {
 struct BuildContext {
   const std::vector<glm::vec3>& positions;
   const std::vector<std::uint32_t>& indices;
+  unsigned maxLeafSize;
   std::atomic<bool> oversizedLeaf{false};
 };
 
@@ -88,8 +104,9 @@ void* createLeaf(RTCThreadLocalAllocator allocator, const RTCBuildPrimitive* pri
   void* memory = rtcThreadLocalAlloc(allocator, sizeof(LeafNode), 16);
   LeafNode* leaf = new (memory) LeafNode;
   leaf->leaf = true;
-  if (count > kMaxLeafSize) static_cast<BuildContext*>(user)->oversizedLeaf = true;
-  leaf->count = unsigned(std::min<size_t>(count, kMaxLeafSize));
+  BuildContext& context = *static_cast<BuildContext*>(user);
+  if (count > context.maxLeafSize) context.oversizedLeaf = true;
+  leaf->count = unsigned(std::min<size_t>(count, context.maxLeafSize));
   for (unsigned i = 0; i < leaf->count; ++i) leaf->triangles[i] = primitives[i].primID;
   return leaf;
 }
@@ -132,6 +149,42 @@ void splitPrimitive(const RTCBuildPrimitive* primitive, unsigned int dimension, 
   *left = clip(leftBox, true);
   *right = clip(rightBox, false);
 }
+
+// A compressed node's quantization grid (gpu::BvhCompressedNode): from the node's padded lower corner, in
+// steps of a power of two per axis that reach its upper corner in 255 steps. Bounds are rounded outward
+// against the decoded value the GPU computes, origin + q x step in float (the product is exact: q has 8
+// bits and the step is a power of two), so a decoded child box always holds the padded one.
+struct Grid {
+  glm::vec3 origin;
+  glm::ivec3 exponent;  // step 2^exponent, within float's normal range
+
+  explicit Grid(const Box& node) : origin(node.min) {
+    for (int a = 0; a < 3; ++a) {
+      const float extent = node.max[a] - node.min[a];
+      int e = extent > 0 ? int(std::ceil(std::log2(double(extent) / 255.0))) : -126;
+      e = std::clamp(e, -126, 127);
+      while (e < 127 && decoded(a, 255, e) < node.max[a]) ++e;
+      exponent[a] = e;
+    }
+  }
+  float decoded(int axis, std::uint32_t q, int e) const { return origin[axis] + float(q) * std::ldexp(1.0f, e); }
+  std::uint32_t lower(int axis, float value) const {
+    const float step = std::ldexp(1.0f, exponent[axis]);
+    auto q = std::uint32_t(std::clamp(std::floor(double(value - origin[axis]) / double(step)), 0.0, 255.0));
+    while (q > 0 && decoded(axis, q, exponent[axis]) > value) --q;
+    return q;
+  }
+  std::uint32_t upper(int axis, float value) const {
+    const float step = std::ldexp(1.0f, exponent[axis]);
+    auto q = std::uint32_t(std::clamp(std::ceil(double(value - origin[axis]) / double(step)), 0.0, 255.0));
+    while (q < 255 && decoded(axis, q, exponent[axis]) < value) ++q;
+    return q;
+  }
+  std::uint32_t exponents() const {  // biased, a byte per axis
+    return std::uint32_t(exponent.x + 127) | std::uint32_t(exponent.y + 127) << 8 |
+           std::uint32_t(exponent.z + 127) << 16;
+  }
+};
 
 // Writes Embree's tree into the GPU layout, depth first, and counts what it wrote.
 class Flattener {
@@ -192,6 +245,58 @@ class Flattener {
       }
     }
     bvh_.wideNodes[index] = out;
+  }
+
+  // An inner node's children into compressedNodes[index]: inner children at consecutive nodes, leaves'
+  // triangles consecutive, boxes quantized outward on the node's grid; a leaf root is the only child.
+  void compressed(const BuildNode* node, size_t index, const Box& bounds, int depth) {
+    const Box nodeBox = padded(bounds);
+    note(depth);
+    const InnerNode* inner = node->leaf ? nullptr : static_cast<const InnerNode*>(node);
+    const unsigned count = inner ? inner->childCount : 1;
+    bvh_.stats.sahCost += double(gpu::kBvhCompressedWidth) * area(nodeBox);
+    gpu::BvhCompressedNode out{};
+    const Grid grid(nodeBox);
+    out.origin = grid.origin;
+    out.exponents = grid.exponents();
+    out.childBase = std::uint32_t(bvh_.compressedNodes.size());
+    out.triangleBase = std::uint32_t(bvh_.triangles.size());
+    std::uint32_t meta[gpu::kBvhCompressedWidth], q[6][gpu::kBvhCompressedWidth] = {};
+    std::fill(std::begin(meta), std::end(meta), gpu::kBvhMetaEmpty);
+    std::vector<std::pair<const BuildNode*, Box>> innerChildren;
+    for (unsigned c = 0; c < count; ++c) {
+      const BuildNode* child = inner ? inner->children[c] : node;
+      const Box childBounds = inner ? toBox(inner->bounds[c]) : bounds, box = padded(childBounds);
+      for (int a = 0; a < 3; ++a) {
+        q[a][c] = grid.lower(a, box.min[a]);
+        q[3 + a][c] = grid.upper(a, box.max[a]);
+      }
+      if (child->leaf) {
+        const LeafNode& leaf = *static_cast<const LeafNode*>(child);
+        note(depth + 1);
+        const std::uint32_t offset = leafTriangles(leaf, box) - out.triangleBase;
+        meta[c] = (leaf.count - 1) << 5 | offset;
+      } else {
+        meta[c] = gpu::kBvhMetaInner | std::uint32_t(innerChildren.size());
+        innerChildren.emplace_back(child, childBounds);
+      }
+    }
+    auto bytes = [](const std::uint32_t* values) {
+      glm::uvec2 words(0);
+      for (unsigned i = 0; i < gpu::kBvhCompressedWidth; ++i) words[int(i / 4)] |= values[i] << (8 * (i % 4));
+      return words;
+    };
+    out.meta = bytes(meta);
+    out.exponents |= ((1u << count) - 1u) << 24;  // the slots in use
+    out.lowerXY = glm::uvec4(bytes(q[0]), bytes(q[1]));
+    out.lowerZUpperX = glm::uvec4(bytes(q[2]), bytes(q[3]));
+    out.upperYZ = glm::uvec4(bytes(q[4]), bytes(q[5]));
+    if (out.childBase + innerChildren.size() > gpu::kBvhCompressedNodeMask + 1)
+      throw std::runtime_error("BVH: more compressed nodes than the traversal's stack addresses");
+    bvh_.compressedNodes.resize(bvh_.compressedNodes.size() + innerChildren.size());
+    bvh_.compressedNodes[index] = out;
+    for (size_t i = 0; i < innerChildren.size(); ++i)
+      compressed(innerChildren[i].first, out.childBase + i, innerChildren[i].second, depth + 1);
   }
 
   void setRootArea(const Box& root) { rootArea_ = std::max(double(root.area()), 1e-30); }
@@ -273,14 +378,14 @@ Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uin
   std::unique_ptr<RTCDeviceTy, DeviceDeleter> device(rtcNewDevice(nullptr));
   if (!device) throw std::runtime_error("BVH: Embree device: " + embreeError(nullptr));
   std::unique_ptr<RTCBVHTy, BvhDeleter> tree(rtcNewBVH(device.get()));
-  BuildContext context{positions, indices};
+  BuildContext context{positions, indices, maxLeafSize(layout)};
   RTCBuildArguments args = rtcDefaultBuildArguments();
   args.buildQuality = RTC_BUILD_QUALITY_HIGH;  // SAH with spatial splits
-  args.maxBranchingFactor = layout == BvhLayout::Wide4 ? gpu::kBvhWidth : 2;
-  args.maxDepth = layout == BvhLayout::Wide4 ? kMaxWideDepth : kMaxBinaryDepth;
+  args.maxBranchingFactor = maxWidth(layout);
+  args.maxDepth = maxDepth(layout);
   args.sahBlockSize = 1;
   args.minLeafSize = 1;
-  args.maxLeafSize = kMaxLeafSize;
+  args.maxLeafSize = maxLeafSize(layout);
   args.traversalCost = 1.0f;
   args.intersectionCost = 1.0f;
   args.bvh = tree.get();
@@ -296,7 +401,7 @@ Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uin
   const BuildNode* top = static_cast<const BuildNode*>(rtcBuildBVH(&args));
   if (!top) throw std::runtime_error("BVH: Embree's builder failed: " + embreeError(device.get()));
   if (context.oversizedLeaf)
-    throw std::runtime_error("BVH: a leaf of more than " + std::to_string(kMaxLeafSize) +
+    throw std::runtime_error("BVH: a leaf of more than " + std::to_string(maxLeafSize(layout)) +
                              " triangles at the depth limit (a pile of overlapping triangles?)");
 
   Flattener flatten(bvh, positions, indices);
@@ -306,13 +411,17 @@ Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uin
     bvh.wideNodes.reserve(primitives.size() / 2 + 1);
     bvh.wideNodes.emplace_back();
     flatten.wide(top, 0, root, 0);
+  } else if (layout == BvhLayout::Compressed8) {
+    bvh.compressedNodes.reserve(primitives.size() / 4 + 1);
+    bvh.compressedNodes.emplace_back();
+    flatten.compressed(top, 0, root, 0);
   } else {
     bvh.nodes.reserve(2 * primitives.size());
     bvh.nodes.emplace_back();
     flatten.binary(top, 0, root, 0);
   }
   bvh.stats.triangleReferences = bvh.triangles.size();
-  const unsigned depthLimit = layout == BvhLayout::Wide4 ? kMaxWideDepth : kMaxBinaryDepth;
+  const unsigned depthLimit = maxDepth(layout);
   if (bvh.stats.maxDepth > int(depthLimit))
     throw std::runtime_error("BVH: depth " + std::to_string(bvh.stats.maxDepth) + " is beyond the GPU stack's " +
                              std::to_string(depthLimit));

@@ -1,7 +1,7 @@
 #pragma once
 // Bounding volume hierarchy over scene triangles, built by Embree's BVH builder (rtcBuildBVH: binned SAH
-// with spatial splits at high quality) and written into the GPU's node layout: binary or 4-wide
-// (shared/bvh_types.h). Our code only defines the nodes and leaves Embree hands back and flattens them;
+// with spatial splits at high quality) and written into the GPU's node layout: binary, 4-wide or compressed
+// 8-wide (shared/bvh_types.h). Our code only defines the nodes and leaves Embree hands back and flattens them;
 // the build's quality and speed are Embree's. The scene is static: built once per load.
 
 #include <cstdint>
@@ -13,9 +13,9 @@
 namespace lgh {
 
 // The GPU node layouts, in kBvhLayoutChoices' order (= gpu::kBvhLayout*).
-enum class BvhLayout { Binary, Wide4 };
-inline constexpr const char* kBvhLayoutChoices = "binary|wide4";
-inline constexpr BvhLayout kBvhLayouts[] = {BvhLayout::Binary, BvhLayout::Wide4};
+enum class BvhLayout { Binary, Wide4, Compressed8 };
+inline constexpr const char* kBvhLayoutChoices = "binary|wide4|compressed8";
+inline constexpr BvhLayout kBvhLayouts[] = {BvhLayout::Binary, BvhLayout::Wide4, BvhLayout::Compressed8};
 
 struct BvhBuildStats {
   size_t nodeCount = 0, leafCount = 0;
@@ -27,18 +27,22 @@ struct BvhBuildStats {
 
 struct Bvh {
   BvhLayout layout = BvhLayout::Binary;
-  std::vector<gpu::BvhNode> nodes;          // binary: nodes[0] is the root (empty without triangles)
-  std::vector<gpu::BvhWideNode> wideNodes;  // wide4: wideNodes[0] is the root (empty without triangles)
-  std::vector<gpu::BvhTriangle> triangles;  // leaf order
+  std::vector<gpu::BvhNode> nodes;                      // binary: nodes[0] is the root (empty without triangles)
+  std::vector<gpu::BvhWideNode> wideNodes;              // wide4: wideNodes[0] is the root (empty without triangles)
+  std::vector<gpu::BvhCompressedNode> compressedNodes;  // compressed8: [0] is the root (empty without triangles)
+  std::vector<gpu::BvhTriangle> triangles;              // leaf order
   BvhBuildStats stats;
 
-  size_t nodeBytes() const { return nodes.size() * sizeof(gpu::BvhNode) + wideNodes.size() * sizeof(gpu::BvhWideNode); }
+  size_t nodeBytes() const {
+    return nodes.size() * sizeof(gpu::BvhNode) + wideNodes.size() * sizeof(gpu::BvhWideNode) +
+           compressedNodes.size() * sizeof(gpu::BvhCompressedNode);
+  }
 };
 
 // positions/indices as in Scene (3 indices per triangle). Degenerate triangles are kept (they never
 // hit). The depth stays within what the GPU traversal's stack holds (gpu::kBvhStackSize entries);
 // throws std::runtime_error where it cannot (or when Embree fails).
 Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices,
-             BvhLayout layout = BvhLayout::Wide4);
+             BvhLayout layout = BvhLayout::Compressed8);
 
 }  // namespace lgh

@@ -4,10 +4,23 @@
 #include "shared/bindings.h"
 
 namespace lgh {
+namespace {
+gl::Buffer nodeBuffer(const Bvh& bvh) {
+  const gl::Label label{passes::kScene, "BVH nodes"};
+  switch (bvh.layout) {
+    case BvhLayout::Binary:
+      return gl::Buffer::fromVector(label, bvh.nodes, 0);
+    case BvhLayout::Wide4:
+      return gl::Buffer::fromVector(label, bvh.wideNodes, 0);
+    case BvhLayout::Compressed8:
+      return gl::Buffer::fromVector(label, bvh.compressedNodes, 0);
+  }
+  return {};
+}
+}  // namespace
 
 GpuBvh::GpuBvh(const Bvh& bvh)
-    : nodes_(bvh.layout == BvhLayout::Wide4 ? gl::Buffer::fromVector({passes::kScene, "BVH nodes"}, bvh.wideNodes, 0)
-                                            : gl::Buffer::fromVector({passes::kScene, "BVH nodes"}, bvh.nodes, 0)),
+    : nodes_(nodeBuffer(bvh)),
       triangles_(gl::Buffer::fromVector({passes::kScene, "BVH triangles"}, bvh.triangles, 0)),
       nodeFloats_(nodes_, GL_RGBA32F),
       nodeWords_(nodes_, GL_RGBA32UI),

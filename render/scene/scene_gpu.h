@@ -20,7 +20,7 @@ namespace lgh {
 class SceneGpu {
  public:
   // The BVH in `layout`: what the tracing passes compile their traversal for (TracingProgram).
-  explicit SceneGpu(const Scene& scene, BvhLayout layout = BvhLayout::Wide4);
+  explicit SceneGpu(const Scene& scene, BvhLayout layout = BvhLayout::Compressed8);
 
   // Binds the BVH (at its LGH_TEXTURE_BVH_* units), scene triangles, materials, textures and punctual
   // lights (at their LGH_BINDING_* slots) for compute shaders.

@@ -21,7 +21,7 @@ class TracingProgram {
  private:
   std::string path_;
   gl::Defines defines_;
-  std::array<gl::Program, 2> programs_;  // by BvhLayout
+  std::array<gl::Program, std::size(kBvhLayouts)> programs_;  // by BvhLayout
 };
 
 }  // namespace lgh

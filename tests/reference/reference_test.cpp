@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <fstream>
 #include <numeric>
+#include <sstream>
 
 #include "bench/reference/reference_tiles.h"
 #include "gl_test_env.h"
@@ -167,7 +168,7 @@ TEST_F(ReferenceTest, VisibilityAgreesWithGpuBvh) {
   const std::vector<std::uint8_t> cpu = occlusion.occluded(rays);
 
   // Each BVH layout's answers (the scene's own, and the other built here).
-  for (BvhLayout layout : {BvhLayout::Binary, BvhLayout::Wide4}) {
+  for (BvhLayout layout : kBvhLayouts) {
     const Bvh bvh = buildBvh(f.scene.positions, f.scene.indices, layout);
     const GpuBvh gpuBvh(bvh);
     gl::Buffer rayBuffer = gl::Buffer::fromVector({"test", "data"}, gpuRays),
@@ -180,13 +181,14 @@ TEST_F(ReferenceTest, VisibilityAgreesWithGpuBvh) {
     const std::vector<TestHit> gpuHits = hitBuffer.downloadAll<TestHit>();
 
     size_t blocked = 0, differ = 0;
+    std::ostringstream name;
+    name << layout;
     for (size_t i = 0; i < rays.size(); ++i) {
       blocked += cpu[i];
       differ += (gpuHits[i].anyHit != 0) != (cpu[i] != 0) ? 1 : 0;
     }
     std::printf("  %s BVH: %zu shadow rays, %zu blocked (Embree); %zu differ from the GPU's (%.2e)\n",
-                layout == BvhLayout::Wide4 ? "wide4" : "binary", rays.size(), blocked, differ,
-                double(differ) / double(rays.size()));
+                name.str().c_str(), rays.size(), blocked, differ, double(differ) / double(rays.size()));
     EXPECT_GT(blocked, rays.size() / 100) << "the scene should cast some indirect shadows";
     EXPECT_LT(blocked, rays.size() * 99 / 100);
     EXPECT_LE(double(differ), 1e-3 * double(rays.size()));

@@ -11,6 +11,7 @@
 #include "render/scene/bvh.h"
 
 #include <algorithm>
+#include <functional>
 #include <random>
 #include <thread>
 
@@ -186,6 +187,27 @@ std::vector<Child> childrenOf(const Bvh& bvh, std::uint32_t node) {
     }
     return out;
   }
+  if (bvh.layout == BvhLayout::Compressed8) {
+    // The boxes as the traversal decodes them: origin + q x 2^(e - 127), in float.
+    const gpu::BvhCompressedNode& n = bvh.compressedNodes[node];
+    const glm::uvec4 words[3] = {n.lowerXY, n.lowerZUpperX, n.upperYZ};
+    auto byte = [](std::uint32_t word, unsigned c) { return (word >> (8 * (c % 4))) & 0xffu; };
+    auto decoded = [&](int bound, unsigned c) {  // bound 0-5: lower x, y, z, upper x, y, z
+      const int axis = bound % 3;
+      const float step = std::ldexp(1.0f, int((n.exponents >> (8 * axis)) & 0xffu) - 127);
+      return n.origin[axis] + float(byte(words[bound / 2][int(2 * (bound % 2) + c / 4)], c)) * step;
+    };
+    for (unsigned c = 0; c < gpu::kBvhCompressedWidth; ++c) {
+      const std::uint32_t meta = byte(n.meta[int(c / 4)], c);
+      if (meta == gpu::kBvhMetaEmpty) continue;
+      Child child{{decoded(0, c), decoded(1, c), decoded(2, c)}, {decoded(3, c), decoded(4, c), decoded(5, c)}};
+      child.leaf = (meta & gpu::kBvhMetaInner) == 0;
+      child.index = child.leaf ? n.triangleBase + (meta & 31u) : n.childBase + (meta & 7u);
+      child.count = child.leaf ? (meta >> 5) + 1 : 0;
+      out.push_back(child);
+    }
+    return out;
+  }
   const gpu::BvhWideNode& n = bvh.wideNodes[node];
   for (int c = 0; c < 4; ++c) {
     const std::uint32_t ref = n.children[c];
@@ -201,8 +223,10 @@ std::vector<Child> childrenOf(const Bvh& bvh, std::uint32_t node) {
 
 class BvhBuild : public ::testing::TestWithParam<BvhLayout> {};
 
-// Every scene triangle is in a leaf (more than once only where a spatial split cut it), every box holds
-// its children's, a leaf's box holds the triangles it alone references, and the depth fits the stack.
+// Every scene triangle is in a leaf (more than once only where a spatial split cut it), the triangles a
+// leaf alone references lie in its box and in every box above it (what lets the traversal skip a box),
+// every box holds its children's (binary, 4-wide: float boxes; a compressed child's box is rounded out on
+// its parent's grid and may pass its parent's by a step), and the depth fits the stack.
 TEST_P(BvhBuild, StructureInvariants) {
   const Mesh mesh = randomSoup(5000, 1);
   const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam());
@@ -210,11 +234,14 @@ TEST_P(BvhBuild, StructureInvariants) {
   ASSERT_GE(bvh.triangles.size(), triangleCount);
   EXPECT_EQ(bvh.stats.triangleReferences, bvh.triangles.size());
   EXPECT_LT(bvh.stats.maxDepth, int(gpu::kBvhStackSize) - 1);
-  EXPECT_LE(bvh.stats.maxLeafSize, 8u);
+  EXPECT_LE(bvh.stats.maxLeafSize, GetParam() == BvhLayout::Compressed8 ? gpu::kBvhCompressedMaxLeafSize : 8u);
 
   std::vector<int> seen(triangleCount, 0);
-  std::vector<std::pair<Child, std::uint32_t>> leaves;  // (leaf, its node)
-  std::vector<std::uint32_t> stack{0u};
+  struct Leaf {
+    Child leaf;
+    std::vector<Child> above;  // the boxes from the root's children down to the leaf's parent
+  };
+  std::vector<Leaf> leaves;
   size_t visitedLeafTriangles = 0;
   auto inside = [](const Child& box, const glm::vec3& p) {
     return glm::all(glm::greaterThanEqual(p, box.lower)) && glm::all(glm::lessThanEqual(p, box.upper));
@@ -222,33 +249,36 @@ TEST_P(BvhBuild, StructureInvariants) {
   if (GetParam() == BvhLayout::Binary) {
     ASSERT_EQ(bvh.nodes[0].triangleCount, 0u) << "a root leaf: too few triangles";
   }
-  std::vector<Child> parents{Child{glm::vec3(-1e30f), glm::vec3(1e30f)}};
-  while (!stack.empty()) {
-    const std::uint32_t node = stack.back();
-    const Child parent = parents.back();
-    stack.pop_back();
-    parents.pop_back();
+  std::vector<Child> above;
+  std::function<void(std::uint32_t)> visit = [&](std::uint32_t node) {
     for (const Child& child : childrenOf(bvh, node)) {
-      ASSERT_TRUE(inside(parent, child.lower) && inside(parent, child.upper));
+      if (!above.empty() && GetParam() != BvhLayout::Compressed8) {
+        ASSERT_TRUE(inside(above.back(), child.lower) && inside(above.back(), child.upper));
+      }
       if (!child.leaf) {
-        stack.push_back(child.index);
-        parents.push_back(child);
+        above.push_back(child);
+        visit(child.index);
+        above.pop_back();
         continue;
       }
       for (std::uint32_t i = 0; i < child.count; ++i) {
         ++seen[bvh.triangles[child.index + i].sceneTriangle];
         ++visitedLeafTriangles;
       }
-      leaves.push_back({child, node});
+      leaves.push_back({child, above});
     }
-  }
+  };
+  visit(0);
   EXPECT_EQ(visitedLeafTriangles, bvh.triangles.size());
   EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int s) { return s >= 1; }));
-  for (const auto& [leaf, node] : leaves)
-    for (std::uint32_t i = 0; i < leaf.count; ++i) {
-      const gpu::BvhTriangle& t = bvh.triangles[leaf.index + i];
+  for (const Leaf& leaf : leaves)
+    for (std::uint32_t i = 0; i < leaf.leaf.count; ++i) {
+      const gpu::BvhTriangle& t = bvh.triangles[leaf.leaf.index + i];
       if (seen[t.sceneTriangle] != 1) continue;
-      for (const glm::vec3& p : {t.v0, t.v0 + t.edge1, t.v0 + t.edge2}) ASSERT_TRUE(inside(leaf, p));
+      for (const glm::vec3& p : {t.v0, t.v0 + t.edge1, t.v0 + t.edge2}) {
+        ASSERT_TRUE(inside(leaf.leaf, p));
+        for (const Child& box : leaf.above) ASSERT_TRUE(inside(box, p));
+      }
     }
 }
 
@@ -260,19 +290,19 @@ TEST_P(BvhBuild, IdenticalTrianglesStayShallow) {
   for (int i = 0; i < 10000; ++i) mesh.indices.insert(mesh.indices.end(), {0, 1, 2});
   const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam());
   EXPECT_LT(bvh.stats.maxDepth, int(gpu::kBvhStackSize) - 1);
-  EXPECT_LE(bvh.stats.maxLeafSize, 8u);
+  EXPECT_LE(bvh.stats.maxLeafSize, GetParam() == BvhLayout::Compressed8 ? gpu::kBvhCompressedMaxLeafSize : 8u);
 }
 
 TEST_P(BvhBuild, EmptyAndSingle) {
   const Bvh none = buildBvh({}, {}, GetParam());
-  EXPECT_TRUE(none.nodes.empty() && none.wideNodes.empty());
+  EXPECT_TRUE(none.nodes.empty() && none.wideNodes.empty() && none.compressedNodes.empty());
   const Bvh one = buildBvh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}, GetParam());
   ASSERT_EQ(one.triangles.size(), 1u);
   if (GetParam() == BvhLayout::Binary) {
     ASSERT_EQ(one.nodes.size(), 1u);
     EXPECT_EQ(one.nodes[0].triangleCount, 1u);
   } else {
-    ASSERT_EQ(one.wideNodes.size(), 1u);
+    ASSERT_EQ(GetParam() == BvhLayout::Wide4 ? one.wideNodes.size() : one.compressedNodes.size(), 1u);
     const std::vector<Child> children = childrenOf(one, 0);
     ASSERT_EQ(children.size(), 1u);
     EXPECT_TRUE(children[0].leaf);
@@ -280,9 +310,10 @@ TEST_P(BvhBuild, EmptyAndSingle) {
   }
 }
 
-const auto kLayouts = ::testing::Values(BvhLayout::Binary, BvhLayout::Wide4);
+const auto kLayouts = ::testing::ValuesIn(kBvhLayouts);
 auto layoutName = [](const ::testing::TestParamInfo<BvhLayout>& info) {
-  return info.param == BvhLayout::Binary ? std::string("Binary") : std::string("Wide4");
+  const char* names[] = {"Binary", "Wide4", "Compressed8"};
+  return std::string(names[size_t(info.param)]);
 };
 INSTANTIATE_TEST_SUITE_P(Layouts, BvhBuild, kLayouts, layoutName);
 
