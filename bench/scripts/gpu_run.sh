@@ -196,10 +196,12 @@ if [[ $mode == full ]]; then rtslc_size=(--width 1920 --height 1080 --vpls 10000
 step rtslc_frame "$bench" frame --backend "$backend" --scene "$sponza" "${camera[@]}" "${rtslc_size[@]}" \
   --interleave 1 --lightcut-samples 8 --repeats "$repeats" --compare-cubes false --compare-targets false
 
-# The BVH layouts' pace on this device against Embree on this machine's cores: shadow-ray segments
-# between random surface points (lgh-bench rays; 4M rays on Sponza, 20K on the reduced run's scene).
-if [[ $mode == full ]]; then ray_count=4000000; else ray_count=20000; fi
-step rays "$bench" rays --backend "$backend" --scene "$sponza" --rays "$ray_count" --repeats "$repeats"
+# The BVH layouts' pace on this device against Embree on this machine's cores (lgh-bench rays): a frame's own
+# shadow rays (640x360, 100K VPLs, k = 4; the reduced run: its size, 10K) and shadow-ray segments between
+# random surface points (4M on Sponza, 20K on the reduced run's scene).
+if [[ $mode == full ]]; then ray_count=4000000 ray_frame=(--vpls 100000); else ray_count=20000 ray_frame=(--width "$width" --height "$height" --vpls 10000); fi
+step rays "$bench" rays --backend "$backend" --scene "$sponza" "${camera[@]}" "${ray_frame[@]}" --rays "$ray_count" \
+  --repeats "$repeats"
 
 # LGH or light tree on this device: a small equal-time sweep of both methods against the Embree reference
 # (the reference on a pixel subset, on this machine's CPU), one frame: Sponza atrium, 100K VPLs, 720p; the
