@@ -180,6 +180,21 @@ std::vector<Ray> frameShadowRays(RenderBench& bench, RenderSettings settings, si
   return rays;
 }
 
+// One ray per pixel from the camera through the pixel's centre, to twice the scene's extent: coherent
+// rays (the G-buffer's, were they traced), any-hit like the rest.
+std::vector<Ray> cameraRays(const Scene& scene, const CameraView& view, int width, int height) {
+  const glm::dmat4 unproject = glm::inverse(glm::dmat4(view.cameraRelativeViewProjection));
+  const float reach = 2.0f * glm::length(scene.bounds.max - scene.bounds.min);
+  std::vector<Ray> rays;
+  rays.reserve(size_t(width) * size_t(height));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const glm::dvec4 p = unproject * glm::dvec4((x + 0.5) / width * 2 - 1, (y + 0.5) / height * 2 - 1, 0.5, 1);
+      rays.push_back({view.position, view.znear, glm::vec3(glm::normalize(glm::dvec3(p) / p.w)), reach});
+    }
+  return rays;
+}
+
 std::vector<Traced> traceAll(const Scene& scene, const std::vector<Ray>& rays, unsigned threads, int repeats) {
   const gl::Buffer buffer = gl::Buffer::fromVector({"rays bench", "rays"}, rays, 0);
   std::vector<Traced> traced;
@@ -266,6 +281,8 @@ int runRaysBench(const RaysBenchOptions& options) {
     sets.push_back({name, std::move(rays)});
   }
   sets.push_back({"random surface-to-surface segments", surfaceSegments(scene, options.rays, options.seed)});
+  sets.push_back({"camera rays (any hit, one a pixel)",
+                  cameraRays(scene, bench.renderer().view(), settings.image.width, settings.image.height)});
 
   size_t worst = 0;
   for (const Set& set : sets) {

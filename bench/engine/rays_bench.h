@@ -1,9 +1,10 @@
 #pragma once
-// lgh-bench rays: the BVH's pace on its own, against Embree's on the same machine in one run, on two sets
-// of shadow rays over one scene: the frame's own (recorded by the shadow-ray pass from a frame rendered
-// with the render settings: Sponza's camera, 640 x 360, 100K VPLs, k = 4 by default), and segments between
-// random points of the scene's surfaces (area-weighted; from the surface offset as the frame's rays are,
-// to 0.1% short of the other point: incoherent, 20-90% blocked). Each set is traced any-hit by each GPU
+// lgh-bench rays: the BVH's pace on its own, against Embree's on the same machine in one run, on three
+// sets of rays over one scene: the frame's own shadow rays (recorded by the shadow-ray pass from a frame
+// rendered with the render settings: Sponza's camera, 640 x 360, 100K VPLs, k = 4 by default), segments
+// between random points of the scene's surfaces (area-weighted; from the surface offset as the frame's
+// rays are, to 0.1% short of the other point: incoherent, 20-90% blocked), and camera rays (one a pixel
+// of the frame's size, through its centre: coherent). Each set is traced any-hit by each GPU
 // BVH layout (glsl/trace_occlusion.comp) and by Embree (rtcOccluded1 on every hardware thread): rays per
 // second (Embree's also per thread), the layouts' work per ray (inner nodes, box tests, triangle tests:
 // device-independent counts, from a second trace with counters), their bytes per scene triangle, how many
