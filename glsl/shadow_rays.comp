@@ -41,7 +41,14 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/sampling.glsl"
 #include "shared/shadow_ray_types.h"
 
-layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Lights { GpuLight inputLights[]; };
+// The input lights S0 as texels (a GpuLight is two: position and normal, intensity and flags).
+layout(binding = LGH_TEXTURE_SHADOW_LIGHT_FLOATS) uniform samplerBuffer inputLightFloats;
+layout(binding = LGH_TEXTURE_SHADOW_LIGHT_WORDS) uniform usamplerBuffer inputLightWords;
+GpuLight inputLight(uint i) {
+  int texel = 2 * int(i);
+  vec4 a = texelFetch(inputLightFloats, texel), b = texelFetch(inputLightFloats, texel + 1);
+  return GpuLight(a.xyz, texelFetch(inputLightWords, texel).w, b.xyz, texelFetch(inputLightWords, texel + 1).w);
+}
 layout(std430, binding = LGH_BINDING_PASS1) readonly buffer ShadowTotals { float shadowTotals[]; };  // F'
 layout(binding = LGH_TEXTURE_SHADOW_IRRADIANCE) uniform sampler2D lightPassIrradiance;  // the slots' layout
 layout(std430, binding = LGH_BINDING_PASS2) readonly buffer ShadowSlots { uint shadowSlots[]; };
@@ -86,7 +93,7 @@ const float kRaisedCosineStd = 0.36151;  // sqrt(1/3 - 2/pi^2)
 // What input light `light`, drawn for a grid light of role `role` and radius R, adds at x per unit of
 // its grid light's luminance share: its geometric factor, blended by its own distance (blendTargets).
 float drawnFactorOf(uint light, vec3 x, vec3 n, uint role, float R) {
-  ShadedLight l = decodeInputLight(inputLights[light]);
+  ShadedLight l = decodeInputLight(inputLight(light));
   float g = geometricFactor(l, x, n, rays.clampDistance);
   return blendTargets() && g > 0.0 ? g * blendWeight(role, distance(l.position, x), R) : g;
 }
@@ -140,7 +147,7 @@ void main() {
       uint id = shadowSlots[pixelIndex * rays.samples + j];
       if (id == kNoLight) continue;
       bool gridLight = (id & kSlotS0) == 0u;
-      ShadedLight light = gridLight ? decodeGridLight(gridLights[id]) : decodeInputLight(inputLights[id & ~kSlotS0]);
+      ShadedLight light = gridLight ? decodeGridLight(gridLights[id]) : decodeInputLight(inputLight(id & ~kSlotS0));
       float R = levelRadius(rays.alpha, rays.topCellSize, light.level, rays.levels);
       uint role = rays.bruteForce != 0u ? kRoleOnly : levelRole(light.level, rays.firstLevel, rays.levels);
       vec3 target = light.position;
@@ -150,7 +157,7 @@ void main() {
                                                         R, rng, drawnFactor)
                                            : kNoLight;
         if (targetLight != kNoLight) {
-          target = inputLights[targetLight].position;
+          target = inputLight(targetLight).position;
         } else {
           drawnFactor = -1.0;
           vec3 sigma = sqrt(max(gridLights[id].variance, vec3(0.0)));

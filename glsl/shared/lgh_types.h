@@ -21,6 +21,10 @@ GPU_STRUCT(GpuLight) {
   uint flags;      // kLightOriented
 };
 GPU_CHECK_SIZE(GpuLight, 32);
+// Two 16-byte texels, a vec3 and a word each (the shadow-ray pass reads them as texels).
+GPU_CHECK_OFFSET(GpuLight, normalOct, 12);
+GPU_CHECK_OFFSET(GpuLight, intensity, 16);
+GPU_CHECK_OFFSET(GpuLight, flags, 28);
 
 // A grid light of level >= 1 (or an S0 light rendered at level 0). 64 bytes.
 GPU_STRUCT(GpuGridLight) {

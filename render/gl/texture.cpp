@@ -37,20 +37,25 @@ int checkedSize(int size, int other) {
 }
 }  // namespace
 
-BufferTexture::BufferTexture(const Buffer& buffer, GLenum internalFormat) {
+BufferTexture::BufferTexture(GLenum internalFormat) : format_(internalFormat) {
   if (internalFormat != GL_RGBA32F && internalFormat != GL_RGBA32UI)
     throw std::invalid_argument("BufferTexture: 16-byte texels only (GL_RGBA32F, GL_RGBA32UI)");
+  GLuint name = 0;
+  glCreateTextures(GL_TEXTURE_BUFFER, 1, &name);
+  handle_ = Handle<DeleteTexture>(name);
+}
+
+void BufferTexture::attach(const Buffer& buffer, size_t bytes) {
   GLint maxTexels = 0;
   glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-  const size_t texels = buffer.size() / 16;
+  if (bytes == 0 || bytes > buffer.size()) bytes = buffer.size();
+  const size_t texels = bytes / 16;
   if (texels > size_t(std::max(maxTexels, 0)))
     throw OutOfMemory("GPU memory: " + buffer.label().text() + " is read as " + std::to_string(texels) +
                       " texels, more than the " + std::to_string(maxTexels) +
                       " one texture buffer may have here (GL_MAX_TEXTURE_BUFFER_SIZE)");
-  GLuint name = 0;
-  glCreateTextures(GL_TEXTURE_BUFFER, 1, &name);
-  handle_ = Handle<DeleteTexture>(name);
-  glTextureBuffer(name, internalFormat, buffer.id());
+  // A range of at least one texel (an empty buffer's storage is a 16-byte stub: gl/buffer.cpp).
+  glTextureBufferRange(handle_.id(), format_, buffer.id(), 0, GLsizeiptr(std::max<size_t>(bytes, 16)));
 }
 
 size_t textureBytes(GLenum internalFormat, int width, int height, int mipLevels) {

@@ -46,18 +46,23 @@ class Texture2D {
 };
 
 // A buffer's bytes read as texels (texelFetch on a samplerBuffer / usamplerBuffer) in a 16-byte format,
-// GL_RGBA32F or GL_RGBA32UI; the buffer must outlive it. Two of these over one buffer read its float and
-// its integer fields (a float view could flush the denormal bit patterns that small integers make).
+// GL_RGBA32F or GL_RGBA32UI; the buffer must outlive its attachment. Two of these over one buffer read its
+// float and its integer fields (a float view could flush the denormal bit patterns that small integers
+// make).
 class BufferTexture {
  public:
   BufferTexture() = default;
-  // Throws gl::OutOfMemory when the buffer holds more texels than GL_MAX_TEXTURE_BUFFER_SIZE.
-  BufferTexture(const Buffer& buffer, GLenum internalFormat);
+  explicit BufferTexture(GLenum internalFormat);
+  BufferTexture(const Buffer& buffer, GLenum internalFormat) : BufferTexture(internalFormat) { attach(buffer); }
 
+  // Reads the buffer's first `bytes` (0: all of it). Throws gl::OutOfMemory when they are more texels than
+  // GL_MAX_TEXTURE_BUFFER_SIZE.
+  void attach(const Buffer& buffer, size_t bytes = 0);
   void bindTexture(GLuint unit) const { glBindTextureUnit(unit, handle_.id()); }
 
  private:
   Handle<DeleteTexture> handle_;
+  GLenum format_ = 0;
 };
 
 // Bytes of storage a texture of this format, size and mip chain takes (as laid out unpadded).

@@ -16,6 +16,8 @@ ShadowRayPass::ShadowRayPass()
     : program_("shadow_rays.comp"),
       untraced_("shadow_rays.comp", {{"LGH_SHADOW_RAYS_UNTRACED", "1"}}),
       recording_("shadow_rays.comp", {{"LGH_SHADOW_RAYS_RECORD", "1"}}),
+      lightFloats_(GL_RGBA32F),
+      lightWords_(GL_RGBA32UI),
       uniforms_(passes::kShadowRays, sizeof(gpu::ShadowRayUniforms)) {}
 
 void ShadowRayPass::release() { uniforms_.release(); }
@@ -45,7 +47,10 @@ void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& o
 
   in.scene.bindForCompute();
   in.gbuffer.bindForReading();
-  in.inputLights.bindRange(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0, 0, in.inputLightCount * sizeof(gpu::GpuLight));
+  lightFloats_.attach(in.inputLights, in.inputLightCount * sizeof(gpu::GpuLight));
+  lightWords_.attach(in.inputLights, in.inputLightCount * sizeof(gpu::GpuLight));
+  lightFloats_.bindTexture(LGH_TEXTURE_SHADOW_LIGHT_FLOATS);
+  lightWords_.bindTexture(LGH_TEXTURE_SHADOW_LIGHT_WORDS);
   in.slots.totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   in.slots.slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   in.slots.unselectable.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);

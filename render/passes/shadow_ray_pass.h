@@ -27,7 +27,7 @@ namespace lgh {
 struct ShadowRayInputs {
   const SceneGpu& scene;  // the BVH the rays traverse
   const GBuffer& gbuffer;
-  const gl::Buffer& inputLights;  // S0 (gpu::GpuLight), `inputLightCount` valid: bound in one storage block
+  const gl::Buffer& inputLights;  // S0 (gpu::GpuLight), `inputLightCount` valid: read as texels
   size_t inputLightCount = 0;
   const GpuHierarchy& hierarchy;
   const ShadowTargets& targets;              // this frame's drawn input lights per grid light (races 0: none)
@@ -65,8 +65,11 @@ class ShadowRayPass {
 
  private:
   TracingProgram program_;
-  TracingProgram untraced_;     // options.trace false
-  TracingProgram recording_;    // out.recordedRays: the same pass with every ray visible
+  TracingProgram untraced_;   // options.trace false: the same pass with every ray visible
+  TracingProgram recording_;  // out.recordedRays
+  // The input lights read as texels (a slot's resampling reads eight: through SSBOs, llvmpipe's scalar
+  // word loads made them most of the pass's work besides the rays).
+  gl::BufferTexture lightFloats_, lightWords_;
   gl::UniformBlocks uniforms_;  // one gpu::ShadowRayUniforms
 };
 
