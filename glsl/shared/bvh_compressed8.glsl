@@ -66,14 +66,15 @@ bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, 
     slots &= slots - 1u;
     uint meta = (header[2u + (c >> 2u)] >> (8u * (c & 3u))) & 0xffu;
     if ((meta & kBvhMetaInner) == 0u) {
-      if (bvhTestLeaf(header.y + (meta & 31u), (meta >> 5u) + 1u, origin, direction, tMin, anyHit, hit)) {
+      uint count = (meta >> kBvhMetaCountShift) + 1u;
+      if (bvhTestLeaf(header.y + (meta & kBvhMetaOffsetMask), count, origin, direction, tMin, anyHit, hit)) {
         found = true;
         if (anyHit) return true;
       }
       continue;
     }
     if (slots != 0u) stack[stackSize++] = group | slots << 24u;
-    group = header.x + (meta & 7u);
+    group = header.x + (meta & kBvhMetaInnerIndexMask);
     BvhCompressedNode node = bvhCompressedNode(group);
     LGH_BVH_COUNT(bvhInnerNodes, 1u);
     LGH_BVH_COUNT(bvhBoxTests, 8u);

@@ -65,8 +65,9 @@ GPU_CHECK_OFFSET(BvhWideNode, children, 96);
 // origin + q step in float, holds the padded child box: bvh.cpp checks it as the GPU computes it). The
 // inner children are consecutive nodes from childBase, the leaves' triangles consecutive from
 // triangleBase, so one byte per child says which: kBvhMetaEmpty, kBvhMetaInner | i (node childBase + i),
-// or a leaf, (count - 1) << 5 | offset (count <= kBvhCompressedMaxLeafSize triangles from triangleBase
-// + offset). Byte i of a pair of words is child i's: child 0-3 in the first word, 4-7 in the second.
+// or a leaf, (count - 1) << kBvhMetaCountShift | offset (count <= kBvhCompressedMaxLeafSize triangles
+// from triangleBase + offset). Byte i of a pair of words is child i's: child 0-3 in the first word, 4-7
+// in the second.
 GPU_STRUCT(BvhCompressedNode) {
   vec3 origin;
   uint exponents;  // bytes 0-2: each axis's step as a float's biased exponent (2^(e - 127)); 3: slots in use
@@ -86,6 +87,9 @@ GPU_CONST uint kBvhCompressedWidth = 8u;
 GPU_CONST uint kBvhCompressedMaxLeafSize = 4u;  // count - 1 (2 bits) and offset (5 bits: at most 7 x 4) fit a byte
 GPU_CONST uint kBvhMetaEmpty = 0xffu;
 GPU_CONST uint kBvhMetaInner = 0x80u;
+GPU_CONST uint kBvhMetaInnerIndexMask = 7u;           // inner: the child's index from childBase
+GPU_CONST uint kBvhMetaCountShift = 5u;               // leaf: count - 1 above the offset
+GPU_CONST uint kBvhMetaOffsetMask = 31u;              // leaf: the first triangle's offset from triangleBase
 GPU_CONST uint kBvhCompressedNodeMask = 0x00ffffffu;  // the traversal's stack: node | slots << 24
 
 // A ray as benchmarks and tests hand it to the traversal, and as the shadow-ray pass records its own
@@ -105,6 +109,7 @@ GPU_CONST uint kBvhLayoutCompressed8 = 2u;
 GPU_CONST uint kBvhWidth = 4u;
 GPU_CONST uint kBvhLeaf = 0x80000000u;
 GPU_CONST uint kBvhLeafCountShift = 27u;  // 4 bits: 1-16 triangles
+GPU_CONST uint kBvhLeafCountMask = 15u;
 GPU_CONST uint kBvhLeafFirstMask = 0x07ffffffu;
 GPU_CONST uint kBvhEmptyChild = 0xffffffffu;
 GPU_CONST uint kBvhMaxLeafSize = 16u;

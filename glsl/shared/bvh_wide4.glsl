@@ -31,7 +31,7 @@ bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, 
   while (stackSize > 0u) {
     uint entry = stack[--stackSize];
     if ((entry & kBvhLeaf) != 0u) {
-      uint count = ((entry >> kBvhLeafCountShift) & 15u) + 1u;
+      uint count = ((entry >> kBvhLeafCountShift) & kBvhLeafCountMask) + 1u;
       if (bvhTestLeaf(entry & kBvhLeafFirstMask, count, origin, direction, tMin, anyHit, hit)) {
         found = true;
         if (anyHit) return true;

@@ -275,7 +275,7 @@ class Flattener {
         const LeafNode& leaf = *static_cast<const LeafNode*>(child);
         note(depth + 1);
         const std::uint32_t offset = leafTriangles(leaf, box) - out.triangleBase;
-        meta[c] = (leaf.count - 1) << 5 | offset;
+        meta[c] = (leaf.count - 1) << gpu::kBvhMetaCountShift | offset;
       } else {
         meta[c] = gpu::kBvhMetaInner | std::uint32_t(innerChildren.size());
         innerChildren.emplace_back(child, childBounds);

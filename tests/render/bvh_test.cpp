@@ -202,8 +202,9 @@ std::vector<Child> childrenOf(const Bvh& bvh, std::uint32_t node) {
       if (meta == gpu::kBvhMetaEmpty) continue;
       Child child{{decoded(0, c), decoded(1, c), decoded(2, c)}, {decoded(3, c), decoded(4, c), decoded(5, c)}};
       child.leaf = (meta & gpu::kBvhMetaInner) == 0;
-      child.index = child.leaf ? n.triangleBase + (meta & 31u) : n.childBase + (meta & 7u);
-      child.count = child.leaf ? (meta >> 5) + 1 : 0;
+      child.index = child.leaf ? n.triangleBase + (meta & gpu::kBvhMetaOffsetMask)
+                               : n.childBase + (meta & gpu::kBvhMetaInnerIndexMask);
+      child.count = child.leaf ? (meta >> gpu::kBvhMetaCountShift) + 1 : 0;
       out.push_back(child);
     }
     return out;
@@ -215,7 +216,7 @@ std::vector<Child> childrenOf(const Bvh& bvh, std::uint32_t node) {
     Child child{{n.lowerX[c], n.lowerY[c], n.lowerZ[c]}, {n.upperX[c], n.upperY[c], n.upperZ[c]}};
     child.leaf = (ref & gpu::kBvhLeaf) != 0;
     child.index = child.leaf ? ref & gpu::kBvhLeafFirstMask : ref;
-    child.count = child.leaf ? ((ref >> gpu::kBvhLeafCountShift) & 15u) + 1 : 0;
+    child.count = child.leaf ? ((ref >> gpu::kBvhLeafCountShift) & gpu::kBvhLeafCountMask) + 1 : 0;
     out.push_back(child);
   }
   return out;
