@@ -6,8 +6,7 @@ layout(local_size_x = 64) in;
 #include "shared/dispatch.glsl"
 #include "shared/bvh_traverse.glsl"
 
-// Two vec4 per ray: (origin, tMin), (unit direction, tMax).
-layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Rays { vec4 rays[]; };
+layout(std430, binding = LGH_BINDING_PASS0) readonly buffer Rays { GpuRay rays[]; };
 layout(std430, binding = LGH_BINDING_PASS1) writeonly buffer Blocked { uint blocked[]; };
 #ifdef LGH_BVH_COUNTERS
 // Per ray: inner nodes, box tests, triangle tests (shared/bvh_traverse.glsl's counters).
@@ -18,8 +17,8 @@ uniform uint rayCount;
 void main() {
   uint i = lghGlobalIndex();
   if (i >= rayCount) return;
-  vec4 originTMin = rays[2u * i], directionTMax = rays[2u * i + 1u];
-  blocked[i] = traceAnyHit(originTMin.xyz, directionTMax.xyz, originTMin.w, directionTMax.w) ? 1u : 0u;
+  GpuRay ray = rays[i];
+  blocked[i] = traceAnyHit(ray.origin, ray.direction, ray.tMin, ray.tMax) ? 1u : 0u;
 #ifdef LGH_BVH_COUNTERS
   work[i] = uvec4(bvhInnerNodes, bvhBoxTests, bvhTriangleTests, 0u);
 #endif

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <memory>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -85,10 +86,16 @@ struct Traced {
   double innerNodes = 0, boxTests = 0, triangleTests = 0;
 };
 
-Traced traceOnGpu(const Scene& scene, BvhLayout layout, const gl::Buffer& rays, size_t count, int repeats) {
-  const SceneGpu gpu(scene, layout);
-  TracingProgram trace("trace_occlusion.comp");
-  const gl::Program& program = trace(gpu);
+// A GPU layout's BVH and its tracing programs (timed, and counting its work), made once for every set.
+struct GpuTracer {
+  GpuTracer(const Scene& scene, BvhLayout layout) : gpu(scene, layout) {}
+  SceneGpu gpu;
+  TracingProgram trace{"trace_occlusion.comp"}, counting{"trace_occlusion.comp", {{"LGH_BVH_COUNTERS", "1"}}};
+};
+
+Traced traceOnGpu(const Scene& scene, GpuTracer& tracer, const gl::Buffer& rays, size_t count, int repeats) {
+  const SceneGpu& gpu = tracer.gpu;
+  const gl::Program& program = tracer.trace(gpu);
   gl::Buffer blocked({"rays bench", "blocked"}, count * sizeof(GLuint));
   gpu.bindForCompute();
   rays.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
@@ -105,15 +112,15 @@ Traced traceOnGpu(const Scene& scene, BvhLayout layout, const gl::Buffer& rays, 
   }
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   std::ostringstream name;
-  name << "GPU " << layout;
+  name << "GPU " << gpu.bvh().layout;
   Traced out{name.str(), spreadOf(times).median, {}, 0};
   for (GLuint b : blocked.downloadAll<GLuint>()) out.blocked.push_back(std::uint8_t(b));
   // The same rays again with the counters: the work, not the time.
-  TracingProgram counting("trace_occlusion.comp", {{"LGH_BVH_COUNTERS", "1"}});
   gl::Buffer work({"rays bench", "work per ray"}, count * sizeof(glm::uvec4));
   work.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
-  counting(gpu).set("rayCount", GLuint(count));
-  counting(gpu).dispatch1D(count, 64);
+  const gl::Program& counting = tracer.counting(gpu);
+  counting.set("rayCount", GLuint(count));
+  counting.dispatch1D(count, 64);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   for (const glm::uvec4& w : work.downloadAll<glm::uvec4>()) {
     out.innerNodes += w.x;
@@ -147,8 +154,8 @@ std::vector<std::uint8_t> occludedByEmbree(const reference::OcclusionScene& scen
   return result;
 }
 
-Traced traceWithEmbree(const Scene& scene, const std::vector<Ray>& rays, unsigned threads, int repeats) {
-  const reference::OcclusionScene occlusion(scene.positions, scene.indices);
+Traced traceWithEmbree(const reference::OcclusionScene& occlusion, const std::vector<Ray>& rays, unsigned threads,
+                       int repeats) {
   Traced out{"Embree rtcOccluded1", 0, {}, 0};
   std::vector<double> times;
   for (int r = 0; r <= repeats; ++r) {  // the first is a warm-up
@@ -195,11 +202,21 @@ std::vector<Ray> cameraRays(const Scene& scene, const CameraView& view, int widt
   return rays;
 }
 
-std::vector<Traced> traceAll(const Scene& scene, const std::vector<Ray>& rays, unsigned threads, int repeats) {
+// Embree's scene and every GPU layout's tracer, made once for all the sets.
+struct Tracers {
+  explicit Tracers(const Scene& scene) : embree(scene.positions, scene.indices) {
+    for (BvhLayout layout : kBvhLayouts) gpu.push_back(std::make_unique<GpuTracer>(scene, layout));
+  }
+  reference::OcclusionScene embree;
+  std::vector<std::unique_ptr<GpuTracer>> gpu;  // by BvhLayout
+};
+
+std::vector<Traced> traceAll(const Scene& scene, Tracers& tracers, const std::vector<Ray>& rays, unsigned threads,
+                             int repeats) {
   const gl::Buffer buffer = gl::Buffer::fromVector({"rays bench", "rays"}, rays, 0);
   std::vector<Traced> traced;
-  traced.push_back(traceWithEmbree(scene, rays, threads, repeats));
-  for (BvhLayout layout : kBvhLayouts) traced.push_back(traceOnGpu(scene, layout, buffer, rays.size(), repeats));
+  traced.push_back(traceWithEmbree(tracers.embree, rays, threads, repeats));
+  for (const auto& tracer : tracers.gpu) traced.push_back(traceOnGpu(scene, *tracer, buffer, rays.size(), repeats));
   return traced;
 }
 
@@ -284,20 +301,22 @@ int runRaysBench(const RaysBenchOptions& options) {
   sets.push_back({"camera rays (any hit, one a pixel)",
                   cameraRays(scene, bench.renderer().view(), settings.image.width, settings.image.height)});
 
-  size_t worst = 0;
+  Tracers tracers(scene);
+  bool differed = false;
   for (const Set& set : sets) {
-    const size_t differ = report(set.name.c_str(), set.rays, traceAll(scene, set.rays, threads, options.repeats),
-                                 threads, settings.bvhLayout);
+    const size_t differ =
+        report(set.name.c_str(), set.rays, traceAll(scene, tracers, set.rays, threads, options.repeats), threads,
+               settings.bvhLayout);
     if (double(differ) > options.maxDiffering * double(set.rays.size())) {
       std::fprintf(stderr, "lgh-bench rays: %s: a GPU layout differs from Embree on %zu of %zu rays (more than %g)\n",
                    set.name.c_str(), differ, set.rays.size(), options.maxDiffering);
-      worst = std::max<size_t>(worst, 1);
+      differed = true;
     }
   }
   std::printf(
       "(Embree differs where alpha-masked triangles are cut out: the GPU tests them, this Embree scene "
       "does not; and on edges, where Embree is watertight and Moller-Trumbore is not.)\n");
-  return worst > 0 ? 1 : 0;
+  return differed ? 1 : 0;
 }
 
 }  // namespace lgh::bench
