@@ -46,8 +46,12 @@ BufferTexture::BufferTexture(GLenum internalFormat) : format_(internalFormat) {
 }
 
 void BufferTexture::attach(const Buffer& buffer, size_t bytes) {
-  GLint maxTexels = 0;
-  glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+  // Asked once, as maxStorageBlockBytes is: the contexts are all of one driver, and passes attach every frame.
+  static const GLint maxTexels = [] {
+    GLint texels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &texels);
+    return texels;
+  }();
   if (bytes == 0 || bytes > buffer.size()) bytes = buffer.size();
   const size_t texels = bytes / 16;
   if (texels > size_t(std::max(maxTexels, 0)))
