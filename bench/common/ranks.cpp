@@ -131,7 +131,13 @@ void Ranks::abort(const std::string& message, int code) const {
     std::fprintf(stderr, "%s\n", message.c_str());
   std::fflush(stderr);
 #ifdef LGH_HAVE_MPI
-  if (distributed()) MPI_Abort(MPI_COMM_WORLD, code);
+  if (distributed()) {
+    // MPICH's launcher forwards a rank's stderr through a pipe to its proxy, and MPI_Abort may end the
+    // proxy before it has read that pipe: the message, the one line saying what failed, would be lost
+    // (it was, once in CI). Give the proxy a moment to forward it; only a failing run pays for it.
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    MPI_Abort(MPI_COMM_WORLD, code);
+  }
 #endif
   std::exit(code);
 }
