@@ -327,6 +327,7 @@ std::vector<glm::vec<N, float>> readAccessor(const tinygltf::Model& model, int i
     return v;
   });
 }
+template std::vector<glm::vec1> readAccessor<1>(const tinygltf::Model&, int, const std::string&);
 template std::vector<glm::vec2> readAccessor<2>(const tinygltf::Model&, int, const std::string&);
 template std::vector<glm::vec3> readAccessor<3>(const tinygltf::Model&, int, const std::string&);
 template std::vector<glm::vec4> readAccessor<4>(const tinygltf::Model&, int, const std::string&);

@@ -47,7 +47,7 @@ const unsigned char* bufferViewData(const tinygltf::Model& model, int index, con
                                     size_t* byteLength, size_t* byteStride = nullptr);
 
 // Every element of accessor `index` as N floats (any legal component type, normalisation applied),
-// with its sparse substitutions. Instantiated for N = 2, 3, 4 (in gltf_accessors.cpp).
+// with its sparse substitutions. Instantiated for N = 1, 2, 3, 4 (in gltf_accessors.cpp).
 template <int N>
 std::vector<glm::vec<N, float>> readAccessor(const tinygltf::Model& model, int index, const std::string& what);
 

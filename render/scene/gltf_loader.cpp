@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "render/scene/gltf_accessors.h"
+#include "render/scene/gltf_animation.h"
 #include "render/scene/gltf_checks.h"
 #include "render/scene/gltf_container.h"
 #include "render/scene/gltf_materials.h"
@@ -66,11 +67,13 @@ class GltfLoader {
     meshQuantization_ = extensionUsed(model_, "KHR_mesh_quantization");
     checkRequiredExtensions(model_);
     nodes_ = displayedNodes(model_);
+    scene_.animation = readAnimations(model_, scene_.warnings);
     loadMeshes();
     loadMaterials(model_, path_, trianglesByMaterial_, defaultMaterial_ >= 0, blendMaterials_, scene_);
     loadLights();
     loadCameras();
     groupTrianglesByMaterial();
+    boundAnimation();
     missingNormals_.flush(scene_.warnings);
     blendMaterials_.flush(scene_.warnings);
     badNormals_.flush(scene_.warnings);
@@ -106,8 +109,7 @@ class GltfLoader {
       const tinygltf::Mesh& mesh = model_.meshes[node.mesh];
       for (size_t p = 0; p < mesh.primitives.size(); ++p)
         appendPrimitive(mesh.primitives[p],
-                        label("mesh", size_t(node.mesh), mesh.name) + " primitive " + std::to_string(p),
-                        nodes_.world[nodeIndex]);
+                        label("mesh", size_t(node.mesh), mesh.name) + " primitive " + std::to_string(p), nodeIndex);
     }
     if (triangleCount_ == 0) {
       size_t primitives = 0;
@@ -160,8 +162,10 @@ class GltfLoader {
   void emitTriangles(const std::vector<std::uint32_t>& tris, const std::vector<glm::dvec3>& worldPositions,
                      const std::vector<glm::vec3>& normals, const glm::mat3& normalMatrix,
                      const std::vector<glm::vec2> (&texcoords)[2], const std::vector<glm::vec4>& colors,
-                     std::vector<std::uint32_t>& bucket, const std::string& what) {
+                     std::vector<std::uint32_t>& bucket, const std::string& what,
+                     std::vector<std::uint32_t>* emittedFrom) {
     const auto emitVertex = [&](std::uint32_t v, const glm::vec3& n) {
+      if (emittedFrom) emittedFrom->push_back(v);
       worldPositions_.push_back(worldPositions[v]);
       scene_.normals.push_back(n);
       scene_.texcoords.push_back(texcoords[0].empty() ? glm::vec2(0.0f) : texcoords[0][v]);
@@ -205,8 +209,10 @@ class GltfLoader {
   }
 
   // Transforms one primitive to world space (double) and appends its vertices (only those its
-  // triangles use) and triangles (to its material's bucket).
-  void appendPrimitive(const tinygltf::Primitive& prim, const std::string& what, const glm::dmat4& world) {
+  // triangles use) and triangles (to its material's bucket). A primitive under a moving node also keeps
+  // its vertices in mesh space, for poseScene.
+  void appendPrimitive(const tinygltf::Primitive& prim, const std::string& what, int nodeIndex) {
+    const glm::dmat4& world = nodes_.world[size_t(nodeIndex)];
     if (prim.mode >= TINYGLTF_MODE_POINTS && prim.mode <= TINYGLTF_MODE_LINE_STRIP) {
       skippedPrimitives_.add(what);
       return;
@@ -263,8 +269,22 @@ class GltfLoader {
                " is not finite (NaN or Inf) after the node transform, or beyond float range");
     }
 
-    emitTriangles(tris, worldPositions, normals, normalMatrix, texcoords, colors, trianglesFor(material), what);
+    const bool moves = !scene_.animation.empty() && scene_.animation.nodes[size_t(nodeIndex)].moves;
+    std::vector<std::uint32_t> emittedFrom;
+    MovingPrimitive moving;
+    moving.node = nodeIndex;
+    moving.firstVertex = std::uint32_t(worldPositions_.size());
+    emitTriangles(tris, worldPositions, normals, normalMatrix, texcoords, colors, trianglesFor(material), what,
+                  moves ? &emittedFrom : nullptr);
     triangleCount_ += tris.size() / 3;
+    if (moves) {
+      moving.vertexCount = std::uint32_t(emittedFrom.size());
+      for (std::uint32_t v : emittedFrom) {
+        moving.positions.push_back(positions[v]);
+        if (!normals.empty()) moving.normals.push_back(normals[v]);
+      }
+      scene_.animation.primitives.push_back(std::move(moving));
+    }
   }
 
   // Scene space: world space shifted by an origin near the geometry, computed in double. Every later
@@ -299,20 +319,11 @@ class GltfLoader {
   // ---------------------------------------------------------------------------------------------
   // Lights and cameras
 
-  // A node's position in scene space (world minus the scene origin, in double, then float).
-  glm::vec3 worldPosition(int node) const {
-    const glm::dvec3 world(nodes_.world[node][3]);
+  // Fails unless the node's position fits a float in world space.
+  void checkPosition(int node) const {
+    const glm::dvec3 world(nodes_.world[size_t(node)][3]);
     for (int c = 0; c < 3; ++c)
       if (!fitsFloat(world[c])) fail(nodeLabel(size_t(node)) + " has a position beyond float range");
-    return glm::vec3(world - scene_.origin);
-  }
-
-  // The node's -Z axis in world space (lights and cameras look down their local -Z).
-  glm::vec3 worldForward(int node) const {
-    const glm::dvec3 d = glm::dmat3(nodes_.world[node]) * glm::dvec3(0.0, 0.0, -1.0);
-    const double length = glm::length(d);
-    if (!(length > 0.0) || !std::isfinite(length)) fail(nodeLabel(node) + " has a degenerate transform (zero scale)");
-    return glm::vec3(d / length);
   }
 
   void loadLights() {
@@ -328,6 +339,7 @@ class GltfLoader {
         fail(nodeLabel(nodeIndex) + " references light " + std::to_string(value.Get("light").GetNumberAsInt()) +
              ", but the file defines " + std::to_string(model_.lights.size()) + " KHR_lights_punctual lights");
       scene_.lights.push_back(makeLight(size_t(index), nodeIndex));
+      scene_.animation.lightNodes.push_back(nodeIndex);
     }
   }
 
@@ -359,8 +371,10 @@ class GltfLoader {
     if (src.range != 0.0 && (!(src.range > 0.0) || !fitsFloat(src.range)))
       fail(what + " has range " + number(src.range) + " (must be a finite number > 0, or absent for infinite)");
     light.range = float(src.range);
-    light.position = worldPosition(nodeIndex);
-    light.direction = worldForward(nodeIndex);
+    checkPosition(nodeIndex);
+    // Lights shine down their node's -Z.
+    if (!lightPlacement(nodes_.world[size_t(nodeIndex)], scene_.origin, light.position, light.direction))
+      fail(nodeLabel(size_t(nodeIndex)) + " has a degenerate transform (zero scale)");
     if (light.type == LightType::Spot) {
       const double inner = src.spot.innerConeAngle, outer = src.spot.outerConeAngle;
       const double halfPi = 1.5707963267948966;
@@ -401,21 +415,16 @@ class GltfLoader {
         fail(what + " has aspectRatio " + number(p.aspectRatio) + " (must be a finite number > 0)");
       Camera camera;
       camera.name = !src.name.empty() ? src.name : !node.name.empty() ? node.name : what;
-      camera.position = worldPosition(nodeIndex);
-      // Orthonormalise (Gram-Schmidt from the view axis): node scale and shear must not skew the view,
-      // and right = up x back keeps the basis right-handed even under a mirroring parent.
-      const glm::dmat3 m(nodes_.world[nodeIndex]);
-      const glm::dvec3 back = -glm::dvec3(worldForward(nodeIndex));
-      glm::dvec3 up = m[1] - glm::dot(m[1], back) * back;
-      if (!(glm::length(up) > 1e-12)) fail(what + ": its node transform is degenerate");
-      up = glm::normalize(up);
-      camera.orientation = glm::mat3(glm::vec3(glm::cross(up, back)), glm::vec3(up), glm::vec3(back));
+      checkPosition(nodeIndex);
+      if (!cameraPlacement(nodes_.world[size_t(nodeIndex)], scene_.origin, camera.position, camera.orientation))
+        fail(what + ": its node transform is degenerate");
       camera.yfov = float(p.yfov);
       camera.aspectRatio = p.aspectRatio > 0.0 ? float(p.aspectRatio) : 0.0f;
       camera.znear = float(p.znear);
       // Absent zfar: infinite. Reversed Z keeps depth precision for any far plane, so a huge one stands in.
       camera.zfar = p.zfar > 0.0 ? float(p.zfar) : std::numeric_limits<float>::max();
       scene_.cameras.push_back(camera);
+      scene_.animation.cameraNodes.push_back(nodeIndex);
     }
     for (size_t i = 0; i < used.size(); ++i)
       if (!used[i])
@@ -445,6 +454,27 @@ class GltfLoader {
     trianglesByMaterial_.clear();
     // Every stored vertex belongs to a triangle (vertices are emitted on first use).
     for (const glm::vec3& p : scene_.positions) scene_.bounds.extend(p);
+  }
+
+  // The bounds cover the whole animation, so that what is scaled to them (the clamp distance, a sun's
+  // emitting disk) holds still while things move: the moving vertices at every key time and at 64 times
+  // between the first and the last.
+  void boundAnimation() {
+    if (scene_.animation.empty() || scene_.animation.primitives.empty()) return;
+    const SceneAnimation& a = scene_.animation;
+    std::vector<double> times;
+    for (const AnimationChannel& c : a.channels) times.insert(times.end(), c.times.begin(), c.times.end());
+    for (int i = 0; i <= 64; ++i) times.push_back(a.start + (a.end - a.start) * i / 64.0);
+    Scene posed;  // the moving part only: the scene stays as the file places it until the caller poses it
+    posed.origin = scene_.origin;
+    posed.animation = a;
+    posed.positions = scene_.positions;
+    posed.normals = scene_.normals;
+    for (double t : times) {
+      poseScene(posed, t);
+      for (const MovingPrimitive& p : a.primitives)
+        for (std::uint32_t v = 0; v < p.vertexCount; ++v) scene_.bounds.extend(posed.positions[p.firstVertex + v]);
+    }
   }
 
   fs::path path_;

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "render/scene/animation.h"
+
 namespace lgh {
 
 struct Bounds {
@@ -97,7 +99,8 @@ struct Scene {
   std::vector<Texture> textures;
   std::vector<PunctualLight> lights;
   std::vector<Camera> cameras;
-  Bounds bounds;                      // of all triangle vertices, scene space
+  SceneAnimation animation;           // what moves, and how (empty for a still scene): see poseScene
+  Bounds bounds;                      // of all triangle vertices, scene space, wherever the animation moves them
   std::vector<std::string> warnings;  // recoverable problems (missing texture, skipped point primitives, ...)
 
   size_t triangleCount() const { return indices.size() / 3; }

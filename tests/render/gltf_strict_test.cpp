@@ -42,5 +42,19 @@ TEST(MalformedGltfBase, UnbrokenSceneLoads) {
   EXPECT_GE(malformedGltfCases().size(), 10u);
 }
 
+TEST(MalformedGltfBase, UnbrokenAnimatedSceneLoadsAndPlays) {
+  TempDir dir;
+  Scene scene = loadScene(writeUnbrokenAnimatedGltf(dir.path()));
+  ASSERT_EQ(scene.animation.channels.size(), 1u);
+  EXPECT_EQ(scene.animation.start, 0.0);
+  EXPECT_EQ(scene.animation.end, 1.0);
+  EXPECT_TRUE(scene.animation.primitives.empty());  // the floor does not move: no copy of it is kept
+  const PoseChange change = poseScene(scene, 0.25);
+  EXPECT_FALSE(change.geometry);
+  ASSERT_EQ(change.lights, std::vector<size_t>{0});
+  EXPECT_FLOAT_EQ(scene.lights[0].position.x, 0.25f);
+  EXPECT_FLOAT_EQ(scene.lights[0].position.y, 2.0f);
+}
+
 }  // namespace
 }  // namespace lgh::test

@@ -263,6 +263,24 @@ int GltfWriter::addCamera(const CameraDesc& c) {
   return int(cameras_.size() - 1);
 }
 
+int GltfWriter::addAnimationChannel(int node, const std::string& path, const std::vector<float>& times,
+                                    const std::vector<float>& values, const std::string& interpolation) {
+  if (animations_.empty()) animations_.push_back({{"channels", Json::array()}, {"samplers", Json::array()}});
+  Json& animation = animations_[0];
+  const int components = path == "rotation" ? 4 : 3;
+  const int input = addAccessor(addBufferView(times.data(), times.size() * 4), gltf::kFloat, times.size(), "SCALAR");
+  if (!times.empty()) {  // glTF requires the input's min and max
+    accessors_[size_t(input)]["min"] = {*std::min_element(times.begin(), times.end())};
+    accessors_[size_t(input)]["max"] = {*std::max_element(times.begin(), times.end())};
+  }
+  const int output = addAccessor(addBufferView(values.data(), values.size() * 4), gltf::kFloat,
+                                 values.size() / size_t(components), components == 4 ? "VEC4" : "VEC3");
+  const int sampler = int(animation["samplers"].size());
+  animation["samplers"].push_back({{"input", input}, {"output", output}, {"interpolation", interpolation}});
+  animation["channels"].push_back({{"sampler", sampler}, {"target", {{"node", node}, {"path", path}}}});
+  return int(animation["channels"].size() - 1);
+}
+
 int GltfWriter::addNode(const NodeDesc& n) {
   Json node = Json::object();
   if (!n.name.empty()) node["name"] = n.name;
@@ -301,6 +319,7 @@ Json GltfWriter::json(const std::string& bufferUri) const {
     if (!array.empty()) doc[key] = array;
   };
   put("meshes", meshes_);
+  put("animations", animations_);
   put("accessors", accessors_);
   put("bufferViews", bufferViews_);
   put("materials", materials_);

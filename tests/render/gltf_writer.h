@@ -234,6 +234,12 @@ class GltfWriter {
   void requireExtension(const std::string& name) { extensionsRequired_.push_back(name); }
   void useExtension(const std::string& name) { extensionsUsed_.push_back(name); }
 
+  // A channel of animation 0 (made by the first call) moving `path` ("translation", "rotation", "scale")
+  // of `node` through `values` (3 floats a key, rotation 4: x, y, z, w; CUBICSPLINE 3 entries a key:
+  // in-tangent, value, out-tangent) at `times`, with a sampler of its own. Returns the channel's index.
+  int addAnimationChannel(int node, const std::string& path, const std::vector<float>& times,
+                          const std::vector<float>& values, const std::string& interpolation = "LINEAR");
+
   // Low-level pieces for hand-made accessors (sparse, odd strides...).
   int addBufferView(const void* data, size_t size, size_t byteStride = 0);
   int addAccessor(int bufferView, int componentType, size_t count, const std::string& type, bool normalized = false,
@@ -251,7 +257,7 @@ class GltfWriter {
                  meshes_ = nlohmann::json::array(), materials_ = nlohmann::json::array(),
                  images_ = nlohmann::json::array(), textures_ = nlohmann::json::array(),
                  lights_ = nlohmann::json::array(), cameras_ = nlohmann::json::array(),
-                 nodes_ = nlohmann::json::array();
+                 nodes_ = nlohmann::json::array(), animations_ = nlohmann::json::array();
   std::vector<std::uint8_t> bin_;
   std::vector<int> roots_;
   bool explicitRoots_ = false;

@@ -28,6 +28,9 @@ struct BaseScene {
   }
 };
 
+// The base scene's animation: the lamp (node 2) carried along x in one second.
+void animatedLamp(GltfWriter& w) { w.addAnimationChannel(2, "translation", {0, 1}, {0, 2, 0, 1, 2, 0}); }
+
 // Writes the base scene with `edit` applied to its JSON (and to its binary buffer).
 std::function<fs::path(const fs::path&)> edited(const std::string& name,
                                                 std::function<void(Json&, std::vector<std::uint8_t>&)> edit,
@@ -204,6 +207,57 @@ std::vector<MalformedGltf> makeCases() {
         d["materials"][0]["emissiveFactor"] = {5.0, 0.0, 0.0};
       },
       {"material 0 'grey'", "emissiveFactor", "outside [0, 1]"});
+
+  // Animations: the lamp (node 2) carried along x in one second, each case breaking one rule.
+  const auto animation = [](Json& d) -> Json& { return d["animations"][0]; };
+  const auto addAnimated = [&](std::string name, std::string rule,
+                               std::function<void(Json&, std::vector<std::uint8_t>&)> edit,
+                               std::vector<std::string> words) {
+    add(std::move(name), std::move(rule), std::move(edit), std::move(words), animatedLamp);
+  };
+  addAnimated("AnimationSamplerOutOfRange", "UNRESOLVED_REFERENCE (animation.channels.sampler)",
+              [=](Json& d, auto&) { animation(d)["channels"][0]["sampler"] = 5; },
+              {"animation 0 channel 0", "sampler 5", "1 samplers"});
+  addAnimated("AnimationNodeOutOfRange", "UNRESOLVED_REFERENCE (animation.channels.target.node)",
+              [=](Json& d, auto&) { animation(d)["channels"][0]["target"]["node"] = 9; },
+              {"animation 0 channel 0", "node 9", "3 nodes"});
+  addAnimated("AnimationUnknownPath", "VALUE_NOT_IN_LIST (animation.channels.target.path)",
+              [=](Json& d, auto&) { animation(d)["channels"][0]["target"]["path"] = "position"; },
+              {"animation 0 channel 0", "'position'"});
+  addAnimated("AnimationUnknownInterpolation", "VALUE_NOT_IN_LIST (animation.samplers.interpolation)",
+              [=](Json& d, auto&) { animation(d)["samplers"][0]["interpolation"] = "SMOOTH"; },
+              {"animation 0 channel 0 sampler 0", "'SMOOTH'"});
+  addAnimated("AnimationTimesNotIncreasing", "ANIMATION_SAMPLER_INPUT_ACCESSOR_NON_INCREASING",
+              [=](Json& d, auto& bin) { poke(d, bin, animation(d)["samplers"][0]["input"].get<int>(), 1, 0.0f); },
+              {"animation 0 channel 0 sampler 0", "not strictly increasing", "time 1"});
+  addAnimated("AnimationTimeNan", "ACCESSOR_INVALID_FLOAT",
+              [=](Json& d, auto& bin) { poke(d, bin, animation(d)["samplers"][0]["input"].get<int>(), 0, nan); },
+              {"animation 0 channel 0 sampler 0", "time 0", "NaN"});
+  addAnimated("AnimationKeyNan", "ACCESSOR_INVALID_FLOAT",
+              [=](Json& d, auto& bin) { poke(d, bin, animation(d)["samplers"][0]["output"].get<int>(), 4, nan); },
+              {"animation 0 channel 0 sampler 0", "output value 1", "NaN"});
+  addAnimated(
+      "AnimationInputNotFloat", "ANIMATION_SAMPLER_INPUT_ACCESSOR_INVALID_FORMAT",
+      [=](Json& d, auto&) { d["accessors"][animation(d)["samplers"][0]["input"].get<int>()]["componentType"] = 5125; },
+      {"animation 0 channel 0 sampler 0 input", "UNSIGNED_INT", "SCALAR FLOAT"});
+  addAnimated("AnimationOutputTypeForPath", "ANIMATION_CHANNEL_TARGET_NODE_PATH_INVALID_FORMAT (translation: VEC3)",
+              [=](Json& d, auto&) { animation(d)["channels"][0]["target"]["path"] = "rotation"; },
+              {"animation 0 channel 0 sampler 0 output", "VEC3", "VEC4 FLOAT"});
+  addAnimated("AnimationOutputCount", "ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_COUNT",
+              [=](Json& d, auto&) { d["accessors"][animation(d)["samplers"][0]["output"].get<int>()]["count"] = 1; },
+              {"animation 0 channel 0 sampler 0", "1 values for 2 times"});
+  addAnimated("AnimationCubicSplineCount", "ANIMATION_SAMPLER_OUTPUT_ACCESSOR_INVALID_COUNT (CUBICSPLINE: 3 a key)",
+              [=](Json& d, auto&) { animation(d)["samplers"][0]["interpolation"] = "CUBICSPLINE"; },
+              {"animation 0 channel 0 sampler 0", "2 values for 2 times", "needs 6"});
+  addAnimated("AnimatedNodeWithMatrix", "ANIMATION_CHANNEL_TARGET_NODE_MATRIX",
+              [=](Json& d, auto&) {
+                d["nodes"][2].erase("translation");
+                d["nodes"][2]["matrix"] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 2, 0, 1};
+              },
+              {"animation 0 channel 0", "node 2 'lamp'", "matrix"});
+  addAnimated("AnimationDuplicateTarget", "ANIMATION_DUPLICATE_TARGETS",
+              [=](Json& d, auto&) { animation(d)["channels"].push_back(animation(d)["channels"][0]); },
+              {"animation 0 channel 1", "already targets the translation", "node 2 'lamp'"});
   return cases;
 }
 
@@ -211,6 +265,11 @@ std::vector<MalformedGltf> makeCases() {
 
 fs::path writeUnbrokenGltf(const fs::path& dir) {
   return edited("unbroken", [](Json&, auto&) {})(dir);
+}
+
+fs::path writeUnbrokenAnimatedGltf(const fs::path& dir) {
+  return edited(
+      "unbroken_animated", [](Json&, auto&) {}, animatedLamp)(dir);
 }
 
 const std::vector<MalformedGltf>& malformedGltfCases() {

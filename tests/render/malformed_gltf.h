@@ -19,5 +19,8 @@ struct MalformedGltf {
 const std::vector<MalformedGltf>& malformedGltfCases();
 // The valid scene every case starts from (a lit, textured quad and a camera), unedited.
 std::filesystem::path writeUnbrokenGltf(const std::filesystem::path& dir);
+// The same with an animation the animation cases break: the lamp (node 2) moves from (0, 2, 0) to
+// (1, 2, 0) over the first second, linearly.
+std::filesystem::path writeUnbrokenAnimatedGltf(const std::filesystem::path& dir);
 
 }  // namespace lgh::test
