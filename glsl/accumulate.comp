@@ -5,8 +5,9 @@
 // values to the history's sums:
 //   irradiance sum  rgb: sum of E_f (unresolved: with n x n interleaving the tile's n^2-scaled value)
 //                   a:   N, frames in the history
-//   ratio sum       r: sum of T_f r_f, g: sum of T_f, b: sum of var(T_f), a: unused (unshadowed: r, g the sum
-//                   of the luminances l_f, b of their squares, and out the mean's variance)
+//   ratio sum       r: sum of T_f r_f, g: sum of T_f, b: sum of var(T_f), a: the last frame's resolved
+//                   irradiance luminance, for the temporal test (unshadowed: r, g the sum of the luminances
+//                   l_f, b of their squares, and out the mean's variance)
 //                   (T_f = lum(E_f) D_f: the frame's ratio weight, what its shadow samples estimate the
 //                   input lights add, D_f their mean weight; var(T_f) its variance, the frames independent)
 //   heaviest frame  r: T_h, g: C_h of the frame with the largest D_f = T_f / C_f (C_f = lum(E_f), the
@@ -32,6 +33,10 @@
 // dealing stratifies, and took back half the correction's gain at 16 frames (Sponza 10K 4x4 k = 16 raw:
 // 0.086 -> 0.121, the heaviest frame alone 0.088; uncorrected 0.151).
 // With N = 1 the outputs are this frame's values bit for bit (unshadowed, the ratio image takes the moments).
+// Under motion (the lights or the geometry moved since the last frame; docs/design.md §6, "history under
+// motion"), the reprojected history is first tested (historyKept): kMotionGradient gives the irradiance's
+// sums way to this frame's and scales the whole history by what the pixel's temporal tests keep;
+// kMotionRatio replaces the irradiance's sums by this frame's and keeps the ratio's (the LGH paper's choice).
 // Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
 // irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, over
 // the interleaving window for N frames (shared/interleave_window.glsl: n x n for N < n, a column of n
@@ -79,6 +84,50 @@ ivec2 historyPixel(Surface s, ivec2 size) {
   if (abs(dot(s.normal, p.xyz - s.position)) > accum.planeTolerance * footprint) return ivec2(-1);  // disoccluded
   if (dot(s.normal, texelFetch(previousNormal, q, 0).xyz) < accum.normalTolerance) return ivec2(-1);
   return q;
+}
+
+// kMotionGradient: what a frame in which something moved keeps of a pixel's history, from temporal tests
+// that are 1 where the lighting at the surface has not changed and 0 where it has (x: the irradiance's
+// history, y: the whole history's):
+//  - x, the unshadowed irradiance's gradient |C_t - C_t-1| / max(C_t, C_t-1) over the resolved luminances
+//    of this frame and the last (A-SVGF's normalised temporal gradient, Schied et al. 2018): its VPLs are
+//    drawn from the same random numbers in both frames, so a change is the lighting's, not noise; the
+//    irradiance's history gives way to this frame's linearly as the gradient reaches `motionTolerance`.
+//    Only the irradiance's: this frame's is known whole (the light pass evaluates every VPL), so a moved
+//    light costs the ratio's history nothing where its shadows stay. Without interleaving this frame's
+//    irradiance is all there is to know (every VPL at every pixel) and replaces the history's outright;
+//    with n x n interleaving the history holds the other tiles' lights, worth keeping where unchanged;
+//  - y, the visibility ratio, which k shadow samples a frame make noisy: this frame's r_t against the
+//    history's ratio R, z = |r_t - R| / sqrt(var r_t + var R), with var r_t at least 1 / (4k) (k Bernoulli
+//    samples at their widest), kept whole to z = 2 and dropped from z = 4 on: a change of the shadow that
+//    the frame's samples can tell from their spread;
+//  - unshadowed (the lightcuts' shadowed estimate, one noisy value): y from the same z test of the frame's
+//    luminance l_t against the history's mean and spread, x = y (a history of one frame, which has no
+//    spread, kept only where nothing changed).
+vec2 historyKept(vec4 irradianceSum, vec4 ratioSum, float resolved, vec4 rawRatio, float l, bool shadowed) {
+  float n = irradianceSum.a;
+  if (n < 0.5) return vec2(1.0);
+  float previous = ratioSum.a, largest = max(resolved, previous);
+  float gradient = largest > 0.0 ? abs(resolved - previous) / largest : 0.0;
+  float irradianceKept = clamp(1.0 - gradient / accum.motionTolerance, 0.0, 1.0);
+  if (!shadowed) {
+    if (n < 1.5) return vec2(gradient == 0.0 ? 1.0 : 0.0);  // one frame has no spread to judge a change by
+    float mean = ratioSum.g / n;
+    float spread = max(ratioSum.b / n - mean * mean, 0.0) * (1.0 + 1.0 / n);
+    float z = abs(l - mean) / sqrt(max(spread, 1e-30 * mean * mean + 1e-37));
+    return vec2(clamp(2.0 - 0.5 * z, 0.0, 1.0));
+  }
+  // Without interleaving the frame's irradiance is whole (every VPL, every pixel): its history adds nothing.
+  vec2 kept = vec2(accum.tilesPerAxis > 1u ? irradianceKept : 0.0, 1.0);
+  float weight = rawRatio.b;
+  if (weight > 0.0 && ratioSum.g > 0.0) {
+    float history = ratioSum.r / ratioSum.g;
+    float variance = max(rawRatio.g / (weight * weight), 0.25 / float(accum.shadowSamples)) +
+                     ratioSum.b / (ratioSum.g * ratioSum.g);
+    float z = abs(rawRatio.r - history) / sqrt(variance);
+    kept.y = clamp(2.0 - 0.5 * z, 0.0, 1.0);
+  }
+  return kept;
 }
 
 // Stage 1: the irradiance of a pixel whose sum lacks some tiles, from the window's new sums (bound as
@@ -130,6 +179,24 @@ void main() {
       heaviest = texelFetch(historyHeaviest, q, 0);
     }
   }
+  vec3 e = accum.tilesPerAxis > 1u ? texelFetch(rawIrradiance, tiledCoord(pixel), 0).rgb
+                                   : texelFetch(rawIrradiance, pixel, 0).rgb;
+  vec4 rawRatio = imageLoad(ratio, pixel);
+  float l = max(luminance(e), 0.0);
+  bool shadowed = accum.shadowSamples != 0u;
+  vec3 resolvedIrradiance = imageLoad(irradiance, pixel).rgb;  // this frame's, resolved
+  float resolved = max(luminance(resolvedIrradiance), 0.0);
+  // The irradiance's history given way to this frame's (resolved: with interleaving, its tile alone would
+  // be a noisy part) in the share `replaced`; then the whole history scaled to what is kept.
+  float replaced = accum.motion == kMotionRatio ? 1.0 : 0.0;
+  if (accum.motion == kMotionGradient) {
+    vec2 kept = historyKept(irradianceSum, ratioSum, resolved, rawRatio, l, shadowed);
+    replaced = 1.0 - kept.x;
+    irradianceSum *= kept.y;
+    ratioSum *= kept.y;
+    if (kept.y == 0.0) heaviest = vec4(0.0);
+  }
+  irradianceSum.rgb = mix(irradianceSum.rgb, resolvedIrradiance * irradianceSum.a, replaced);
   // At the cap the sums are scaled to maxFrames - 1 frames first: a moving average of the last frames.
   float n = irradianceSum.a;
   if (n > accum.maxFrames - 1.0) {
@@ -137,15 +204,11 @@ void main() {
     irradianceSum *= keep;
     ratioSum *= keep;
   }
-  vec3 e = accum.tilesPerAxis > 1u ? texelFetch(rawIrradiance, tiledCoord(pixel), 0).rgb
-                                   : texelFetch(rawIrradiance, pixel, 0).rgb;
-  vec4 rawRatio = imageLoad(ratio, pixel);
-  float l = max(luminance(e), 0.0);
-  bool shadowed = accum.shadowSamples != 0u;
   float r = shadowed ? rawRatio.r : 1.0, weight = shadowed ? max(rawRatio.b, 0.0) : l;
   float variance = shadowed ? max(rawRatio.g, 0.0) : l * l;  // unshadowed: the luminance's second moment
   irradianceSum += vec4(e, 1.0);
   ratioSum += vec4(weight * r, weight, variance, 0.0);
+  ratioSum.a = resolved;
   if (l > 0.0 && (heaviest.g <= 0.0 || weight * heaviest.g > heaviest.r * l)) heaviest = vec4(weight, l, 0.0, 0.0);
   imageStore(irradianceSumOut, pixel, irradianceSum);
   imageStore(ratioSumOut, pixel, ratioSum);

@@ -16,9 +16,11 @@ namespace lgh {
 struct InputLightKey {
   InputLightSettings settings;
   bool pointLightsToS0 = false;  // the scene's point lights go into S0 (too many for exact direct light)
-  unsigned lightsVersion = 0;    // SceneGpu::lightsVersion(): a punctual light was edited
+  unsigned lightsVersion = 0;    // SceneGpu::lightsVersion(): a punctual light was edited or moved
+  unsigned geometryVersion = 0;  // SceneGpu::geometryVersion(): the vertices moved (the paths hit elsewhere)
   bool operator==(const InputLightKey& o) const {
-    return settings == o.settings && pointLightsToS0 == o.pointLightsToS0 && lightsVersion == o.lightsVersion;
+    return settings == o.settings && pointLightsToS0 == o.pointLightsToS0 && lightsVersion == o.lightsVersion &&
+           geometryVersion == o.geometryVersion;
   }
   bool operator!=(const InputLightKey& o) const { return !(*this == o); }
 };

@@ -6,6 +6,7 @@ namespace lgh {
 
 // In frame order.
 namespace passes {
+inline constexpr const char* kBvhBuild = "BVH build";  // over vertices an animation moved (SceneGpu::follow)
 inline constexpr const char* kGBuffer = "G-buffer";
 inline constexpr const char* kDirectLight = "direct light";
 inline constexpr const char* kInputLights = "input lights";

@@ -164,13 +164,14 @@ FrameStats Renderer::render(const CameraView& view) {
     // S0 (VPLs, emitter samples, many point lights) and the structure the method draws from it (the
     // hierarchy, the light tree), when out of date.
     stats.lightsRebuilt = updateLights(frame);
-    stats.accumulatedFrames = updateAccumulation(stats.lightsRebuilt, view);
+    bool moved = false;
+    stats.accumulatedFrames = updateAccumulation(stats.lightsRebuilt, view, moved);
     // This frame's raw estimate (render/indirect/): the LGH's light volumes with k shadow samples picked per
     // pixel and their shadow rays, or the lightcuts' n shadowed light samples per pixel.
     stats.lights = method_->estimate(frame);
     // Temporal accumulation: the raw estimate added to the history reprojected from the last frame; the
     // accumulated estimate replaces it for the filter and the composite.
-    if (accumulating()) timed(passes::kAccumulation, [&] { accumulate(frame, view); });
+    if (accumulating()) timed(passes::kAccumulation, [&] { accumulate(frame, view, moved); });
     // The estimate denoised: the LGH's ratio filter, or the lightcuts' variance-guided one.
     indirect = method_->filter(frame);
   }
@@ -180,6 +181,11 @@ FrameStats Renderer::render(const CameraView& view) {
         compositePass_.execute({gbuffer_, direct_, indirect.irradiance, indirect.visibility}, {indirect_, final_});
   });
   stats.passes = profiler_.collect();
+  // The BVH that SceneGpu::follow rebuilt for this frame's moved vertices: timed where it ran, before the frame.
+  if (scene_.geometryVersion() != geometryVersion_) {
+    stats.passes.insert(stats.passes.begin(), gl::PassTiming{passes::kBvhBuild, 0.0, scene_.bvhBuildMs()});
+    geometryVersion_ = scene_.geometryVersion();
+  }
   if (method_) {
     stats.lights.inputLights = inputLights_.count;
     stats.lights.pointLights = inputLights_.pointLights;
@@ -192,10 +198,10 @@ FrameStats Renderer::render(const CameraView& view) {
   return stats;
 }
 
-void Renderer::accumulate(const IndirectFrame& frame, const CameraView& view) {
+void Renderer::accumulate(const IndirectFrame& frame, const CameraView& view, bool moved) {
   const AccumulationSource source = method_->accumulation(frame);
   accumulationPass_.execute(
-      {gbuffer_, view, source.rawIrradiance, source.layout, source.shadowSamples, kInterleaveResolve},
+      {gbuffer_, view, source.rawIrradiance, source.layout, source.shadowSamples, kInterleaveResolve, moved},
       settings_.accumulation, source.targets);
 }
 
@@ -204,14 +210,22 @@ void Renderer::restartAccumulation() {
   accumulatedFrames_ = 0;
 }
 
-int Renderer::updateAccumulation(bool lightsRebuilt, const CameraView& view) {
+int Renderer::updateAccumulation(bool lightsRebuilt, const CameraView& view, bool& moved) {
+  moved = false;
   if (!accumulating()) {
     restartAccumulation();
     return 0;
   }
   std::string key = estimateKey(settings_);
-  // The history's sums belong to the lights and settings they were made with (VPLs are not reprojected).
-  if (lightsRebuilt || key != accumulationKey_) restartAccumulation();
+  // The history's sums belong to the settings they were made with. Lights rebuilt with the same settings
+  // moved (a light, or the geometry, with the VPLs drawn from the same random numbers): the history is
+  // restarted, or kept where each pixel's test finds the lighting unchanged (AccumulationSettings::motion).
+  if (key != accumulationKey_ || (lightsRebuilt && settings_.accumulation.motion == HistoryMotion::Restart)) {
+    restartAccumulation();
+  } else if (lightsRebuilt) {
+    moved = true;
+    accumulatedFrames_ = 0;  // the count is of still frames
+  }
   accumulationKey_ = std::move(key);
   // A moved camera keeps the reprojected history where the surfaces match, but this count is of the
   // still frames only.
@@ -222,9 +236,9 @@ int Renderer::updateAccumulation(bool lightsRebuilt, const CameraView& view) {
 }
 
 bool Renderer::updateLights(const IndirectFrame& frame) {
-  const InputLightKey key{settings_.inputLights, pointLightsInS0(), scene_.lightsVersion()};
-  // A light moved through SceneGpu::setPunctualLight rebuilds S0 and the structure over it, as in the paper
-  // (VPLs are not reprojected).
+  const InputLightKey key{settings_.inputLights, pointLightsInS0(), scene_.lightsVersion(), scene_.geometryVersion()};
+  // A moved light or a moved mesh rebuilds S0 and the structure over it, as in the paper (VPLs are not
+  // reprojected): from the same random numbers, so that a small move moves the VPLs a little.
   const bool inputLights = builds_.plan(key, settings_.hierarchy.levels, false).inputLights;
   if (inputLights) {
     timed(passes::kInputLights, [&] { inputLightsPass_.execute(key.settings, key.pointLightsToS0, inputLights_); });

@@ -94,11 +94,12 @@ class Renderer {
   IndirectFrame indirectFrame();
   // S0 when its settings or the lights changed, and the method's structure over it when out of date.
   bool updateLights(const IndirectFrame& frame);
-  // Restarts the history when the lights were rebuilt or the estimate's settings changed, and counts
-  // the frames it holds while the camera is still.
-  int updateAccumulation(bool lightsRebuilt, const CameraView& view);
+  // Restarts the history when the estimate's settings changed (or the lights were rebuilt and motion
+  // restarts it), says whether the lights moved (`moved`), and counts the frames it holds while the camera
+  // and the lights are still.
+  int updateAccumulation(bool lightsRebuilt, const CameraView& view, bool& moved);
   // The method's raw estimate summed into its history, the accumulated estimate in its place.
-  void accumulate(const IndirectFrame& frame, const CameraView& view);
+  void accumulate(const IndirectFrame& frame, const CameraView& view, bool moved);
   // Runs `pass` inside a profiler scope called `name` (a passes:: constant).
   template <typename Pass>
   void timed(const char* name, Pass&& pass) {
@@ -112,6 +113,7 @@ class Renderer {
   gl::Profiler profiler_;
   gl::Buffer frameUniforms_;
   unsigned frameIndex_ = 0;
+  unsigned geometryVersion_ = 0;  // SceneGpu::geometryVersion() of the last frame
 
   // Passes, in frame order; the indirect methods (render/indirect/) hold theirs.
   GBufferPass gbufferPass_;

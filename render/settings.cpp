@@ -49,6 +49,10 @@ std::ostream& operator<<(std::ostream& out, RtslcDenoiser denoiser) {
   return out << choiceName(denoiser, kRtslcDenoiserChoices);
 }
 
+std::ostream& operator<<(std::ostream& out, HistoryMotion motion) {
+  return out << choiceName(motion, kHistoryMotionChoices);
+}
+
 void setSetting(RenderSettings& settings, const std::string& name, const std::string& value) {
   bool found = false;
   std::string names;

@@ -93,11 +93,19 @@ struct ShadowFilterSettings {
 // frame's. With n x n interleaving the light-to-tile dealing rotates every frame so that n^2
 // frames see every light at every pixel. Off by default, so that each render() is one frame as
 // before (pinned frames, benchmarks); the viewer turns it on, and lgh-render with --frames > 1.
+// What the history does in a frame in which the lights or the geometry moved (docs/design.md §6,
+// "history under motion"): restart it everywhere; keep the visibility ratio's and take this frame's
+// irradiance (the LGH paper's choice); or keep each pixel's as far as its temporal test finds the
+// lighting there unchanged. In kHistoryMotionChoices' order (= gpu::kMotion* - 1).
+enum class HistoryMotion { Restart, Ratio, Gradient };
+
 struct AccumulationSettings {
   bool enabled = false;
   int maxFrames = 1024;     // history length cap: beyond it the oldest frames fade out (moving average)
   float filterFade = 0.5f;  // a-trous ratio sigma x N^-filterFade and floor(filterFade log2 N) widest passes
                             // skipped for N accumulated frames (0: no fade)
+  HistoryMotion motion = HistoryMotion::Gradient;
+  float motionTolerance = 0.1f;  // gradient: a relative change of the unshadowed irradiance that drops all history
 };
 
 // The peer method, real-time stochastic lightcuts (RtslcPass; docs/design.md §12): indirect light from the
@@ -187,6 +195,7 @@ inline constexpr const char* kShadowEstimatorChoices = "converging|paper|uniform
 inline constexpr const char* kToneMapChoices = "aces|reinhard|clamp";
 inline constexpr const char* kIndirectMethodChoices = "none|lgh|rtslc";
 inline constexpr const char* kRtslcDenoiserChoices = "shadowed|ratio";
+inline constexpr const char* kHistoryMotionChoices = "restart|ratio|gradient";
 
 // visit(value&, SettingInfo) for each setting, in the order users see them.
 template <typename Settings, typename Visitor>
@@ -324,6 +333,15 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(accumulation.filterFade,
         SettingInfo{"accumulate-filter-fade", "ratio sigma x N^-fade over N frames, widest passes skipped", 0, 4}
             .keepingHistory());
+  visit(
+      accumulation.motion,
+      SettingInfo{"accumulate-motion", "history when lights or meshes move: restart, keep the ratio's, or test pixels"}
+          .oneOf(kHistoryMotionChoices)
+          .keepingHistory());
+  visit(accumulation.motionTolerance,
+        SettingInfo{"accumulate-motion-tolerance", "gradient: relative irradiance change that drops a pixel's history",
+                    1e-3, 10}
+            .keepingHistory());
 }
 
 // Sets the setting called `name` from text, checking its type and range (the viewer's `set`, the
@@ -351,6 +369,7 @@ Enum choiceValue(const std::string& name, const char* choices) {
 // The method's choice name (lgh, rtslc, none): what settings keys, CSVs and messages print.
 std::ostream& operator<<(std::ostream& out, IndirectMethod method);
 std::ostream& operator<<(std::ostream& out, RtslcDenoiser denoiser);
+std::ostream& operator<<(std::ostream& out, HistoryMotion motion);
 std::ostream& operator<<(std::ostream& out, BvhLayout layout);
 
 }  // namespace lgh

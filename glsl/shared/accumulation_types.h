@@ -9,6 +9,11 @@ GPU_NAMESPACE_BEGIN
 GPU_CONST uint kAccumulateSums = 0u;               // stage 0: sums and outputs
 GPU_CONST uint kAccumulateResolveIncomplete = 1u;  // stage 1: resolve of incomplete interleaved sums
 
+// What moved since the last frame, and what the history does about it (HistoryMotion + 1).
+GPU_CONST uint kMotionNone = 0u;      // nothing: the sums grow exactly
+GPU_CONST uint kMotionRatio = 2u;     // the irradiance's history replaced by this frame's, the ratio's kept
+GPU_CONST uint kMotionGradient = 3u;  // each pixel's history kept as far as its temporal tests allow
+
 // A vec3 followed by a scalar, scalars in groups of four (see gpu_prelude.h).
 GPU_STRUCT(AccumulationUniforms) {
   mat4 previousViewProjection;  // camera-relative: clip = M (p - previousCameraPosition)
@@ -25,9 +30,10 @@ GPU_STRUCT(AccumulationUniforms) {
   float planeTolerance;   // tangent-plane distance, in pixel footprints, still the same surface
   float normalTolerance;  // smallest n . n' still the same surface
 
-  float normalPower;  // stage 1: neighbour weight max(0, n.n')^normalPower
-  float planeSigma;   // stage 1: tangent-plane distance in pixel footprints at weight e^-1/2
-  uint pad0, pad1;
+  float normalPower;      // stage 1: neighbour weight max(0, n.n')^normalPower
+  float planeSigma;       // stage 1: tangent-plane distance in pixel footprints at weight e^-1/2
+  uint motion;            // kMotion*
+  float motionTolerance;  // kMotionGradient: the relative irradiance change that drops all history
 };
 GPU_CHECK_OFFSET(AccumulationUniforms, previousCameraPosition, 64);
 GPU_CHECK_OFFSET(AccumulationUniforms, maxFrames, 76);

@@ -1,7 +1,9 @@
 // lgh-render: renders a glTF scene headless and writes the image.
 //   lgh-render [SCENE] -o out.png|out.exr --width --height --camera --backend ...
 #include <CLI/CLI.hpp>
+#include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -13,6 +15,7 @@
 #include "render/renderer.h"
 #include "render/scene/added_lights.h"
 #include "render/scene/scene_gpu.h"
+#include "render/scene/scripted_motion.h"
 
 namespace {
 
@@ -30,6 +33,12 @@ struct Command {
   std::vector<std::string> aovOutputs;
   bool quiet = false, debugGL = false;
   int frames = 1;  // frames rendered from the same camera (same VPLs); the last one is written
+  // An animated sequence: `sequence` frames (0: a still image) at `fps` from `time` (the animation's start
+  // unless given), each written to the output pattern, the history carried from frame to frame.
+  double time = 0.0, fps = 30.0;
+  int sequence = 0;
+  std::string sunStep, pointStep;
+  double orbitStep = 0.0;
   lgh::RenderSettings settings;
   lgh::AddedLightOptions addedLights;
 };
@@ -45,9 +54,16 @@ void addOptions(CLI::App& app, Command& c, int argc, char** argv) {
   app.add_option("scene", c.scenePath, "glTF scene (.gltf or .glb)")->capture_default_str();
   app.add_option("-o,--output", c.output, "output image: .png/.jpg (tone-mapped sRGB) or .exr/.hdr (linear HDR)")
       ->capture_default_str();
-  app.add_option("--frames", c.frames, "render N frames from the still camera and write the last (accumulated)")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 1 << 20));
+  CLI::Option* frames =
+      app.add_option("--frames", c.frames, "render N frames from the still camera and write the last (accumulated)")
+          ->capture_default_str()
+          ->check(CLI::Range(1, 1 << 20));
+  app.add_option("--time", c.time, "seconds into the scene's animation (default: its start)");
+  app.add_option("--sequence", c.sequence,
+                 "render N frames of the animation from --time, each to -o (with %d: numbered)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->excludes(frames);
+  app.add_option("--fps", c.fps, "frames a second of --sequence")->capture_default_str()->check(CLI::PositiveNumber);
   const std::string advanced = lgh::addSettingsCommandLine(app, c.settings, argc, argv);
   app.add_option("--backend", c.backend, "OpenGL context: " + joined(lgh::gl::backendNames()))
       ->capture_default_str()
@@ -58,6 +74,37 @@ void addOptions(CLI::App& app, Command& c, int argc, char** argv) {
   app.add_flag("--debug-gl", c.debugGL, "KHR_debug context: GL errors abort the render with the driver's message")
       ->group(advanced);
   lgh::addLightOptions(app, c.addedLights, advanced);
+  app.add_option("--sun-step", c.sunStep, "sequence: every sun turns DAZIMUTH,DELEVATION degrees a frame")
+      ->group(advanced);
+  app.add_option("--point-step", c.pointStep, "sequence: every point light moves DX,DY,DZ a frame")->group(advanced);
+  app.add_option("--orbit-step", c.orbitStep, "sequence: the camera orbits the scene's centre DEG degrees a frame")
+      ->group(advanced);
+}
+
+// Frame `frame`'s file: the output with its printf-style %d (e.g. frame_%04d.png) filled in, or, without
+// one, with _NNNN before the extension.
+std::filesystem::path sequencePath(const std::filesystem::path& output, int frame) {
+  const std::string pattern = output.string();
+  if (pattern.find('%') != std::string::npos) {
+    std::vector<char> text(pattern.size() + 32);
+    std::snprintf(text.data(), text.size(), pattern.c_str(), frame);
+    return std::filesystem::path(text.data());
+  }
+  char number[16];
+  std::snprintf(number, sizeof number, "_%04d", frame);
+  std::filesystem::path path = output;
+  return path.replace_filename(output.stem().string() + number + output.extension().string());
+}
+
+// The output pattern may hold one integer conversion and nothing else printf would read.
+void checkSequencePattern(const std::filesystem::path& output) {
+  const std::string pattern = output.string();
+  const size_t at = pattern.find('%');
+  if (at == std::string::npos) return;
+  size_t end = at + 1;
+  while (end < pattern.size() && (std::isdigit(static_cast<unsigned char>(pattern[end])) != 0)) ++end;
+  if (end >= pattern.size() || pattern[end] != 'd' || pattern.find('%', end) != std::string::npos)
+    throw std::invalid_argument("--output " + pattern + ": a sequence's pattern takes one %d or %0Nd, nothing else");
 }
 
 // The --aov requests by AOV, checked (names, extensions, folders) before any work.
@@ -68,8 +115,9 @@ std::map<lgh::Aov, std::filesystem::path> checkedAovs(const Command& c) {
     if (eq == std::string::npos) throw std::invalid_argument("--aov expects NAME=FILE, got '" + spec + "'");
     aovs[lgh::parseAov(spec.substr(0, eq))] = spec.substr(eq + 1);
   }
-  lgh::checkImagePath(c.output);
-  for (const auto& [aov, path] : aovs) lgh::checkImagePath(path);
+  if (c.sequence > 0) checkSequencePattern(c.output);
+  lgh::checkImagePath(c.sequence > 0 ? sequencePath(c.output, 0) : c.output);
+  for (const auto& [aov, path] : aovs) lgh::checkImagePath(c.sequence > 0 ? sequencePath(path, 0) : path);
   return aovs;
 }
 
@@ -141,7 +189,12 @@ int run(int argc, char** argv) {
   const double loadMs = msSince(t0);
   for (const std::string& w : scene.warnings) std::cerr << "lgh-render: warning: " << w << "\n";
   if (!lgh::sceneHasLight(scene)) std::cerr << "lgh-render: note: " << lgh::noLightHint() << "\n";
-  const lgh::Camera camera = lgh::resolveCamera(scene, settings);
+  const lgh::ScriptedMotion motion = lgh::parseScriptedMotion(c.sunStep, c.pointStep, c.orbitStep);
+  const double startTime = app.count("--time") > 0 ? c.time : scene.animation.start;
+  if (!std::isfinite(startTime)) throw std::invalid_argument("--time must be a finite number of seconds");
+  const std::vector<lgh::PunctualLight> startLights = scene.lights;
+  lgh::poseScene(scene, startTime);
+  lgh::Camera camera = lgh::resolveCamera(scene, settings);
 
   lgh::gl::ContextOptions contextOptions;
   contextOptions.backend = lgh::gl::parseBackend(c.backend);
@@ -150,19 +203,39 @@ int run(int argc, char** argv) {
 
   const auto t1 = Clock::now();
   lgh::gl::memory().setLimit(size_t(double(settings.gpuMemoryLimit) * 1e6));  // the scene counts too
-  const lgh::SceneGpu sceneGpu(scene, settings.bvhLayout);
+  lgh::SceneGpu sceneGpu(scene, settings.bvhLayout);
   lgh::Renderer renderer(sceneGpu, settings);
   const double setupMs = msSince(t1);
-  const lgh::CameraView view = lgh::makeCameraView(camera, settings.image.width, settings.image.height);
+  const auto write = [&](int frame) {
+    const auto file = [&](const std::filesystem::path& path) {
+      return c.sequence > 0 ? sequencePath(path, frame) : path;
+    };
+    lgh::writeImage(file(c.output), renderer.readImage(lgh::Aov::Final), settings.image.exposure, toneMap);
+    for (const auto& [aov, path] : aovs) {
+      if (lgh::isDataAov(aov))
+        lgh::writeImage(file(path), renderer.readImage(aov), 0.0f, lgh::ToneMap::Clamp);
+      else
+        lgh::writeImage(file(path), renderer.readImage(aov), settings.image.exposure, toneMap);
+    }
+  };
   lgh::FrameStats stats;
-  for (int f = 0; f < c.frames; ++f) stats = renderer.render(view);
-
-  lgh::writeImage(c.output, renderer.readImage(lgh::Aov::Final), settings.image.exposure, toneMap);
-  for (const auto& [aov, path] : aovs) {
-    if (lgh::isDataAov(aov))
-      lgh::writeImage(path, renderer.readImage(aov), 0.0f, lgh::ToneMap::Clamp);
-    else
-      lgh::writeImage(path, renderer.readImage(aov), settings.image.exposure, toneMap);
+  if (c.sequence == 0) {
+    const lgh::CameraView view = lgh::makeCameraView(camera, settings.image.width, settings.image.height);
+    for (int f = 0; f < c.frames; ++f) stats = renderer.render(view);
+    write(0);
+  }
+  // A sequence: each frame posed at its time, the scripted motions moved on, one render, the history carried.
+  for (int f = 0; f < c.sequence; ++f) {
+    const double time = startTime + double(f) / c.fps;
+    lgh::PoseChange change = lgh::poseScene(scene, time);
+    camera = lgh::resolveCamera(scene, settings);
+    change.merge(lgh::applyScriptedMotion(motion, f, startLights, scene, camera));
+    sceneGpu.follow(change);
+    stats = renderer.render(lgh::makeCameraView(camera, settings.image.width, settings.image.height));
+    write(f);
+    if (!c.quiet)
+      std::printf("frame %4d  t %8.4f s  %9.2f ms (BVH build %.2f ms)  -> %s\n", f, time, stats.totalMs(),
+                  stats.passMs(lgh::passes::kBvhBuild), sequencePath(c.output, f).string().c_str());
   }
   if (!c.quiet) printSummary(c, *context, sceneGpu, camera, stats, loadMs, setupMs);
   if (stats.nonFinitePixels > 0)

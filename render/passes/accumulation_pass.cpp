@@ -56,6 +56,9 @@ void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationS
   sums.tileHeight = unsigned(in.layout.tileSize.y);
   sums.planeTolerance = kHistoryPlaneTolerance;
   sums.normalTolerance = kHistoryNormalTolerance;
+  // What a frame in which the lights or the geometry moved does with the history (restart: nothing left).
+  sums.motion = in.moved && hasHistory_ ? unsigned(settings.motion) + 1u : gpu::kMotionNone;
+  sums.motionTolerance = std::max(settings.motionTolerance, 1e-6f);
   gpu::AccumulationUniforms resolve = sums;
   const InterleaveFilter& filter = in.resolve;
   resolve.stage = gpu::kAccumulateResolveIncomplete;

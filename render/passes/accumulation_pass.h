@@ -10,8 +10,9 @@
 //   history (kept here, ping-pong): sums of the raw irradiance, of the ratio's weighted values, weights
 //        and variances, the frame whose weight strays the most (it bounds their variance), and the
 //        surfaces they belong to
-// The history is reprojected through the G-buffer each frame and dropped where the surface differs;
-// restart() drops all of it (the lights or the estimate's settings changed).
+// The history is reprojected through the G-buffer each frame and dropped where the surface differs; in a
+// frame in which the lights or the geometry moved it is also tested per pixel (AccumulationSettings::motion);
+// restart() drops all of it (the estimate's settings changed, or motion restarts it).
 
 #include "render/camera_view.h"
 #include "render/gl/program.h"
@@ -35,6 +36,7 @@ struct AccumulationInputs {
   TileLayout layout;                              // tiled when layout.tilesPerAxis > 1
   int shadowSamples = 0;                          // k: the ratio target holds this frame's raw ratio (0: not read)
   InterleaveFilter resolve = kInterleaveResolve;  // the weights of the resolve of incomplete sums
+  bool moved = false;  // the lights or the geometry moved since the last frame (AccumulationSettings::motion)
 };
 
 // Read and written in place.

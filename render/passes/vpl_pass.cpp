@@ -18,6 +18,7 @@ VplPass::VplPass(const SceneGpu& scene)
       triangleEmitterBuffer_(
           gl::Buffer::fromVector({passes::kInputLights, "emissive triangles"}, triangleEmitters_.emitters, 0)),
       emittersLightsVersion_(scene.lightsVersion()),
+      emittersGeometryVersion_(scene.geometryVersion()),
       paths_("vpl_generate.comp", {{"LGH_VPL_PATHS", "1"}}),
       emitterSamples_("vpl_generate.comp", {{"LGH_EMITTER_SAMPLES", "1"}}),
       compactFlags_(gl::Program::compute("vpl_compact.comp", {{"LGH_COMPACT_FLAGS", "1"}})),
@@ -87,13 +88,20 @@ size_t VplPass::compact(size_t slotCount, gl::Buffer& out, size_t offset) {
 }
 
 void VplPass::updateEmitters() {
-  if (emittersLightsVersion_ == scene_.lightsVersion()) return;
+  const bool geometry = emittersGeometryVersion_ != scene_.geometryVersion();
+  if (emittersLightsVersion_ == scene_.lightsVersion() && !geometry) return;
   // A moved light keeps its power, but a changed intensity or cone changes every selection
-  // probability, so the whole table is rebuilt (on a light edit, not per frame; cheap next to tracing
-  // the paths it feeds).
+  // probability, so the whole table is rebuilt (on a light edit or a moved scene, not per still frame;
+  // cheap next to tracing the paths it feeds). Moved vertices move the emissive triangles.
   allEmitters_ = buildEmitterTable(scene_.scene(), scene_.lights());
   allEmitterBuffer_ = gl::Buffer::fromVector({passes::kInputLights, "emitters"}, allEmitters_.emitters, 0);
+  if (geometry) {
+    triangleEmitters_ = buildEmissiveTriangleTable(scene_.scene());
+    triangleEmitterBuffer_ =
+        gl::Buffer::fromVector({passes::kInputLights, "emissive triangles"}, triangleEmitters_.emitters, 0);
+  }
   emittersLightsVersion_ = scene_.lightsVersion();
+  emittersGeometryVersion_ = scene_.geometryVersion();
 }
 
 size_t VplPass::tracePaths(gl::Buffer& out, size_t offset, size_t budget, int bounces, std::uint32_t seed) {
@@ -122,6 +130,7 @@ size_t VplPass::tracePaths(gl::Buffer& out, size_t offset, size_t budget, int bo
 }
 
 size_t VplPass::sampleEmissiveTriangles(gl::Buffer& out, size_t offset, size_t count, std::uint32_t seed) {
+  updateEmitters();
   if (triangleEmitters_.empty() || count == 0) return 0;
   const size_t batch = batchSamples(1);
   for (size_t first = 0; first < count; first += batch)

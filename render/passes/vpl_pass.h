@@ -30,7 +30,7 @@ class VplPass {
   // `count` points on emissive triangles (chosen by power). Returns the number written.
   size_t sampleEmissiveTriangles(gl::Buffer& out, size_t offset, size_t count, std::uint32_t seed);
 
-  // The table of all emitters as of the last tracePaths (it follows SceneGpu::lightsVersion()).
+  // The table of all emitters as of the last tracePaths (it follows SceneGpu's lights and geometry versions).
   const EmitterTable& emitters() const { return allEmitters_; }
   const EmitterTable& emissiveTriangles() const { return triangleEmitters_; }
   // At most this many samples per batch (0: as many as one storage block holds), for tests of the batching.
@@ -39,7 +39,7 @@ class VplPass {
   static size_t maxVplCount(size_t budget, int bounces) { return pathCount(budget, bounces) * size_t(bounces); }
 
  private:
-  void updateEmitters();  // rebuilds the table of all emitters after the punctual lights changed
+  void updateEmitters();  // rebuilds the emitter tables after the punctual lights or the vertices changed
   // Runs vpl_generate.comp for samples [first, first + count) of `total`: record `slot` of the batch's
   // count x `bounces` slots goes to out[offset + slot]. The batch's records must fit one storage block.
   void generate(const gl::Program& program, const gl::Buffer& emitters, gl::Buffer& out, size_t offset, size_t first,
@@ -55,6 +55,7 @@ class VplPass {
   gl::Buffer allEmitterBuffer_, triangleEmitterBuffer_;
   gl::Buffer pathSlots_, slotIndex_;  // the paths' fixed slots (GpuLight, flags 0: empty) and their compaction
   unsigned emittersLightsVersion_;    // SceneGpu::lightsVersion() that allEmitters_ was built from
+  unsigned emittersGeometryVersion_;  // SceneGpu::geometryVersion() that both tables were built from
   size_t batchLimit_ = 0;
   TracingProgram paths_, emitterSamples_;
   gl::Program compactFlags_, compactWrite_;

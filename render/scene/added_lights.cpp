@@ -12,7 +12,8 @@ namespace {
 
 constexpr double kRadians = 3.14159265358979323846 / 180.0;
 
-// Comma-separated finite numbers; throws with the option's name and the expected form.
+}  // namespace
+
 std::vector<double> parseNumbers(const std::string& spec, const std::string& option, const std::string& form,
                                  size_t minCount, size_t maxCount) {
   std::vector<double> values;
@@ -31,8 +32,6 @@ std::vector<double> parseNumbers(const std::string& spec, const std::string& opt
   if (values.size() < minCount || values.size() > maxCount) throw bad(std::to_string(values.size()) + " numbers");
   return values;
 }
-
-}  // namespace
 
 glm::vec3 sunDirection(float azimuthDegrees, float elevationDegrees) {
   const double a = double(azimuthDegrees) * kRadians, e = double(elevationDegrees) * kRadians;

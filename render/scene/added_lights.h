@@ -21,6 +21,11 @@ glm::vec3 sunDirection(float azimuthDegrees, float elevationDegrees);
 // The inverse: azimuth and elevation (degrees) of a unit vector towards the sun.
 glm::vec2 sunAngles(const glm::vec3& towardsSun);
 
+// An option value of `minCount` to `maxCount` comma-separated finite numbers; throws std::invalid_argument
+// naming `option`, the value and the expected `form`.
+std::vector<double> parseNumbers(const std::string& spec, const std::string& option, const std::string& form,
+                                 size_t minCount, size_t maxCount);
+
 // Parse one option value; throw std::invalid_argument naming the option and what is wrong.
 PunctualLight parseSunOption(const std::string& spec);
 PunctualLight parsePointOption(const std::string& spec, const Scene& scene);

@@ -138,6 +138,13 @@ bool cameraPlacement(const glm::dmat4& world, const glm::dvec3& origin, glm::vec
   return true;
 }
 
+void PoseChange::merge(const PoseChange& other) {
+  geometry |= other.geometry;
+  cameras |= other.cameras;
+  for (size_t i : other.lights)
+    if (std::find(lights.begin(), lights.end(), i) == lights.end()) lights.push_back(i);
+}
+
 PoseChange poseScene(Scene& scene, double time) {
   PoseChange change;
   const SceneAnimation& animation = scene.animation;
@@ -149,7 +156,9 @@ PoseChange poseScene(Scene& scene, double time) {
     std::vector<glm::dvec3> posed(p.vertexCount);
     for (std::uint32_t v = 0; v < p.vertexCount; ++v) {
       posed[v] = glm::dvec3(m * glm::dvec4(glm::dvec3(p.positions[v]), 1.0));
-      scene.positions[p.firstVertex + v] = glm::vec3(posed[v] - scene.origin);
+      const glm::vec3 position(posed[v] - scene.origin);
+      change.geometry |= position != scene.positions[p.firstVertex + v];
+      scene.positions[p.firstVertex + v] = position;
     }
     for (std::uint32_t v = 0; v < p.vertexCount; ++v) {
       glm::vec3 n;
@@ -161,21 +170,27 @@ PoseChange poseScene(Scene& scene, double time) {
         const double length = glm::length(transformed);
         n = length > 0.0 && std::isfinite(length) ? glm::vec3(transformed / length) : glm::vec3(0.0f, 1.0f, 0.0f);
       }
+      change.geometry |= n != scene.normals[p.firstVertex + v];
       scene.normals[p.firstVertex + v] = n;
     }
-    change.geometry = true;
   }
   for (size_t i = 0; i < scene.lights.size() && i < animation.lightNodes.size(); ++i) {
     const int node = animation.lightNodes[i];
     if (node < 0 || !animation.nodes[size_t(node)].moves) continue;
-    if (lightPlacement(world[size_t(node)], scene.origin, scene.lights[i].position, scene.lights[i].direction))
+    PunctualLight& light = scene.lights[i];
+    const glm::vec3 position = light.position, direction = light.direction;
+    if (lightPlacement(world[size_t(node)], scene.origin, light.position, light.direction) &&
+        (light.position != position || light.direction != direction))
       change.lights.push_back(i);
   }
   for (size_t i = 0; i < scene.cameras.size() && i < animation.cameraNodes.size(); ++i) {
     const int node = animation.cameraNodes[i];
     if (node < 0 || !animation.nodes[size_t(node)].moves) continue;
-    change.cameras |=
-        cameraPlacement(world[size_t(node)], scene.origin, scene.cameras[i].position, scene.cameras[i].orientation);
+    Camera& camera = scene.cameras[i];
+    const glm::vec3 position = camera.position;
+    const glm::mat3 orientation = camera.orientation;
+    if (cameraPlacement(world[size_t(node)], scene.origin, camera.position, camera.orientation))
+      change.cameras |= camera.position != position || camera.orientation != orientation;
   }
   return change;
 }

@@ -69,11 +69,12 @@ struct SceneAnimation {
   std::vector<glm::dmat4> worldTransforms(double time) const;
 };
 
-// What poseScene moved.
+// What poseScene moved (what it set to the value it had is not counted: a still stretch keeps the history).
 struct PoseChange {
   bool geometry = false;       // vertex positions and normals
   std::vector<size_t> lights;  // indices into Scene::lights
   bool cameras = false;
+  void merge(const PoseChange& other);
 };
 
 // Moves the scene's moving vertices, lights and cameras to where the animation has them at `time`.

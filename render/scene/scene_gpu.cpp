@@ -77,19 +77,24 @@ void packTexels(const Scene& scene, std::vector<gpu::GpuTextureInfo>& infos, std
 
 }  // namespace
 
-SceneGpu::SceneGpu(const Scene& scene, BvhLayout layout) : scene_(scene) {
-  gl::DebugGroup group("upload scene");
+void SceneGpu::buildBvh(BvhLayout layout) {
   const auto start = std::chrono::steady_clock::now();
-  bvh_ = buildBvh(scene.positions, scene.indices, layout);
-  bvhBuildMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-
+  bvh_ = lgh::buildBvh(scene_.positions, scene_.indices, layout);
   // Alpha-masked triangles are marked in the BVH so that traversal tests alpha only where it can matter.
   for (gpu::BvhTriangle& t : bvh_.triangles)
-    if (scene.materials[scene.triangleMaterials[t.sceneTriangle]].alphaMode == AlphaMode::Mask)
+    if (scene_.materials[scene_.triangleMaterials[t.sceneTriangle]].alphaMode == AlphaMode::Mask)
       t.flags |= gpu::kBvhTriangleAlphaMasked;
+  gpuBvh_ = GpuBvh(bvh_);
+  bvhBuildMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
 
-  positions_ = gl::Buffer::fromVector({passes::kScene, "vertex positions"}, scene.positions, 0);
-  normals_ = gl::Buffer::fromVector({passes::kScene, "vertex normals"}, scene.normals, 0);
+SceneGpu::SceneGpu(const Scene& scene, BvhLayout layout) : scene_(scene) {
+  gl::DebugGroup group("upload scene");
+  buildBvh(layout);
+  // An animated scene's vertices move (follow): their buffers take updates.
+  const GLbitfield moving = scene.animation.primitives.empty() ? 0 : GL_DYNAMIC_STORAGE_BIT;
+  positions_ = gl::Buffer::fromVector({passes::kScene, "vertex positions"}, scene.positions, moving);
+  normals_ = gl::Buffer::fromVector({passes::kScene, "vertex normals"}, scene.normals, moving);
   texcoords_ = gl::Buffer::fromVector({passes::kScene, "texture coordinates 0"}, scene.texcoords, 0);
   texcoords1_ = gl::Buffer::fromVector({passes::kScene, "texture coordinates 1"}, scene.texcoords1, 0);
   colors_ = gl::Buffer::fromVector({passes::kScene, "vertex colours"}, scene.colors, 0);
@@ -114,7 +119,6 @@ SceneGpu::SceneGpu(const Scene& scene, BvhLayout layout) : scene_(scene) {
   for (const Material& m : scene.materials) materials_.push_back(toGpu(m));
   sceneLights_ = scene.lights;
   for (const PunctualLight& l : scene.lights) lights_.push_back(toGpu(l));
-  gpuBvh_ = GpuBvh(bvh_);
   materialBuffer_ = gl::Buffer::fromVector({passes::kScene, "materials"}, materials_, 0);
   lightBuffer_ = gl::Buffer::fromVector({passes::kScene, "punctual lights"}, lights_,
                                         GL_DYNAMIC_STORAGE_BIT);  // setPunctualLight updates it
@@ -156,11 +160,28 @@ void SceneGpu::setPunctualLight(size_t index, const PunctualLight& light) {
   if (index >= sceneLights_.size())
     throw std::out_of_range("SceneGpu::setPunctualLight: light " + std::to_string(index) + " of " +
                             std::to_string(sceneLights_.size()));
+  uploadLight(index, light);
+  ++lightsVersion_;
+  gl::checkErrors("set punctual light");
+}
+
+void SceneGpu::uploadLight(size_t index, const PunctualLight& light) {
   sceneLights_[index] = light;
   lights_[index] = toGpu(light);
   lightBuffer_.update(&lights_[index], sizeof(gpu::GpuPunctualLight), index * sizeof(gpu::GpuPunctualLight));
-  ++lightsVersion_;
-  gl::checkErrors("set punctual light");
+}
+
+void SceneGpu::follow(const PoseChange& change) {
+  gl::DebugGroup group("follow the animation");
+  for (size_t i : change.lights) uploadLight(i, scene_.lights.at(i));
+  if (!change.lights.empty()) ++lightsVersion_;
+  if (change.geometry) {
+    positions_.update(scene_.positions);
+    normals_.update(scene_.normals);
+    buildBvh(bvh_.layout);
+    ++geometryVersion_;
+  }
+  gl::checkErrors("follow the animation");
 }
 
 const gl::Texture2D& SceneGpu::texture(int index) const {

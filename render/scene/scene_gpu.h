@@ -1,10 +1,11 @@
 #pragma once
 // The scene on the GPU: vertex streams for rasterization (drawn per material, since core GL cannot
 // index samplers per triangle), material and punctual-light SSBOs, textures, and the BVH for compute
-// shaders. Built once per scene; passes only bind it. The punctual lights alone may change afterwards
-// (the viewer moves them): setPunctualLight bumps lightsVersion(), and whatever is derived from the
-// lights (the VPL emitter table, S0 and the hierarchy, the direct pass's light list) is rebuilt by its
-// owner when it sees the version change.
+// shaders. Built once per scene; passes only bind it. Two things may change afterwards, each with a
+// version that whatever is derived from it watches: the punctual lights (the viewer moves them, an
+// animation carries them: lightsVersion(), which the VPL emitter table, S0 and the hierarchy and the
+// direct pass's light list follow) and, in an animated scene, the vertices (follow(): geometryVersion(),
+// with the BVH rebuilt, which the emissive-triangle table and S0 follow).
 
 #include <vector>
 
@@ -48,16 +49,23 @@ class SceneGpu {
   // Replaces light `index` (throws std::out_of_range) and re-uploads the light buffer.
   void setPunctualLight(size_t index, const PunctualLight& light);
   unsigned lightsVersion() const { return lightsVersion_; }
-  double bvhBuildMs() const { return bvhBuildMs_; }
+  // Takes what poseScene moved in the Scene this was made from: the lights' records (one version step for
+  // them all) and the vertices, re-uploaded with the BVH built anew over them.
+  void follow(const PoseChange& change);
+  unsigned geometryVersion() const { return geometryVersion_; }
+  double bvhBuildMs() const { return bvhBuildMs_; }  // of the last build (at construction, or the last follow)
 
  private:
+  void buildBvh(BvhLayout layout);
+  void uploadLight(size_t index, const PunctualLight& light);
+
   const Scene& scene_;
   Bvh bvh_;
   double bvhBuildMs_ = 0;
   std::vector<gpu::GpuMaterial> materials_;
   std::vector<PunctualLight> sceneLights_;
   std::vector<gpu::GpuPunctualLight> lights_;
-  unsigned lightsVersion_ = 0;
+  unsigned lightsVersion_ = 0, geometryVersion_ = 0;
   gl::Buffer positions_, normals_, texcoords_, texcoords1_, colors_, indices_;
   gl::VertexArrayHandle vertexArray_;
   GpuBvh gpuBvh_;

@@ -238,6 +238,40 @@ TEST_F(RenderCliTest, BadSunAndPointValuesFailWithTheirForm) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// --sequence renders the animation frame by frame to the numbered files of the output pattern: the moving
+// lamp of data/cornell_moving_light.gltf changes every frame, and --time 1 renders the frame at 1 s.
+TEST_F(RenderCliTest, SequenceWritesNumberedFramesOfTheAnimation) {
+  const std::string scene = quoted(sourceDir() / "data" / "cornell_moving_light.gltf");
+  const std::string size = " --width 96 --height 54 --vpls 2000 --shadow-samples 0";
+  const RunResult r = runRender(scene + size + " --sequence 3 --fps 2 -o " + quoted(dir / "f_%02d.exr"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  int w = 0, h = 0;
+  std::vector<double> means;
+  for (int f = 0; f < 3; ++f) means.push_back(meanValue(dir / ("f_0" + std::to_string(f) + ".exr"), &w, &h));
+  EXPECT_GT(means[0], 0.0);
+  EXPECT_NE(means[0], means[1]);
+  EXPECT_NE(means[1], means[2]);
+  // The frame at 1 s (frame 2 at 2 frames a second) is the still image at --time 1; without %d a pattern
+  // gets _NNNN before its extension.
+  ASSERT_EQ(runRender(scene + size + " --time 1 -o " + quoted(dir / "at1.exr")).exitCode, 0);
+  EXPECT_NEAR(meanValue(dir / "at1.exr", &w, &h), means[2], 1e-6 * means[2]);
+  ASSERT_EQ(runRender(scene + size + " --sequence 1 -o " + quoted(dir / "plain.exr")).exitCode, 0);
+  EXPECT_TRUE(std::filesystem::exists(dir / "plain_0000.exr"));
+  // A pattern printf would read more from, and --frames with --sequence, are refused before any work.
+  const std::vector<BadInvocation> cases = {
+      {"pattern with %s", scene + " --sequence 2 -o " + quoted(dir / "f_%s.png"), {"%d", "nothing else"}},
+      {"--frames and --sequence", scene + " --sequence 2 --frames 4 -o " + quoted(dir / "f.png"), {"excludes"}},
+      {"bad --sun-step", scene + " --sequence 2 --sun-step 1 -o " + quoted(dir / "f.png"), {"--sun-step", "DAZIMUTH"}},
+  };
+  for (const BadInvocation& c : cases) {
+    SCOPED_TRACE(c.name);
+    const RunResult bad = runRender(c.arguments);
+    EXPECT_NE(bad.exitCode, 0) << bad.output;
+    EXPECT_NE(bad.exitCode, -1) << "crashed:\n" << bad.output;
+    for (const std::string& word : c.expectedWords) EXPECT_NE(bad.output.find(word), std::string::npos) << bad.output;
+  }
+}
+
 TEST_F(RenderCliTest, WindowBackendWithoutDisplaySaysWhatToDo) {
   // Without a display (as in CI, or over ssh) the window backend must explain itself, not crash.
   const RunResult r = runRender("--backend window -o " + quoted(dir / "w.png"), "env -u DISPLAY -u WAYLAND_DISPLAY");

@@ -164,6 +164,11 @@ TEST(AnimationSampling, PosingMovesVerticesNormalsLightsAndCameras) {
   expect3(scene.cameras[0].position, {0, 2, 0});
   expect3(scene.cameras[0].orientation[0], {0, 1, 0});   // right: x rotated
   expect3(scene.cameras[0].orientation[1], {-1, 0, 0});  // up: y rotated
+  // Posed again at the same time, nothing changes, and nothing says so.
+  const PoseChange again = poseScene(scene, 1.0);
+  EXPECT_FALSE(again.geometry);
+  EXPECT_TRUE(again.lights.empty());
+  EXPECT_FALSE(again.cameras);
   // A still scene is left as it is.
   Scene still;
   still.positions = {{1, 2, 3}};
