@@ -19,6 +19,7 @@
 #include "bench/engine/frame_bench.h"
 #include "bench/engine/light_bench.h"
 #include "bench/engine/memory_bench.h"
+#include "bench/engine/motion_bench.h"
 #include "bench/engine/rays_bench.h"
 #ifdef LGH_HAVE_REFERENCE
 #include "bench/reference/reference_bench.h"
@@ -55,6 +56,9 @@ int run(int argc, char** argv) {
   lgh::bench::RaysBenchOptions raysOptions;
   benchmarks.push_back(
       {lgh::bench::addRaysCommand(app, raysOptions), [&] { return lgh::bench::runRaysBench(raysOptions); }});
+  lgh::bench::MotionBenchOptions motionOptions;
+  benchmarks.push_back(
+      {lgh::bench::addMotionCommand(app, motionOptions), [&] { return lgh::bench::runMotionBench(motionOptions); }});
   lgh::bench::ReferenceBenchOptions referenceOptions;
   benchmarks.push_back({lgh::bench::addReferenceCommand(app, referenceOptions),
                         [&] { return lgh::bench::runReferenceBench(referenceOptions); }});

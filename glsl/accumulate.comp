@@ -53,6 +53,7 @@ layout(binding = LGH_TEXTURE_ACCUM_RAW_IRRADIANCE) uniform sampler2D rawIrradian
 layout(binding = LGH_TEXTURE_ACCUM_IRRADIANCE_SUM) uniform sampler2D historyIrradiance;
 layout(binding = LGH_TEXTURE_ACCUM_RATIO_SUM) uniform sampler2D historyRatio;
 layout(binding = LGH_TEXTURE_ACCUM_HEAVIEST) uniform sampler2D historyHeaviest;
+layout(binding = LGH_TEXTURE_ACCUM_RAW_RATIO) uniform sampler2D rawRatios;  // under motion: the ratio image's copy
 layout(binding = LGH_TEXTURE_ACCUM_PREVIOUS_POSITION) uniform sampler2D previousPosition;  // w = 0: no surface
 layout(binding = LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL) uniform sampler2D previousNormal;
 layout(rgba32f, binding = LGH_IMAGE_ACCUM_IRRADIANCE) uniform image2D irradiance;  // resolved in, accumulated out
@@ -94,39 +95,62 @@ ivec2 historyPixel(Surface s, ivec2 size) {
 //    drawn from the same random numbers in both frames, so a change is the lighting's, not noise; the
 //    irradiance's history gives way to this frame's linearly as the gradient reaches `motionTolerance`.
 //    Only the irradiance's: this frame's is known whole (the light pass evaluates every VPL), so a moved
-//    light costs the ratio's history nothing where its shadows stay. Without interleaving this frame's
-//    irradiance is all there is to know (every VPL at every pixel) and replaces the history's outright;
-//    with n x n interleaving the history holds the other tiles' lights, worth keeping where unchanged;
-//  - y, the visibility ratio, which k shadow samples a frame make noisy: this frame's r_t against the
-//    history's ratio R, z = |r_t - R| / sqrt(var r_t + var R), with var r_t at least 1 / (4k) (k Bernoulli
-//    samples at their widest), kept whole to z = 2 and dropped from z = 4 on: a change of the shadow that
-//    the frame's samples can tell from their spread;
+//    light costs the ratio's history nothing where its shadows stay. Where this frame's irradiance is
+//    whole (the LGH without interleaving: every grid light at every pixel) it replaces the history's
+//    outright; with n x n interleaving the history holds the other tiles' lights, and with the lightcuts'
+//    ratio form other samples, worth keeping where unchanged;
+//  - y, the visibility ratio, which k shadow samples a frame make noisy: the history's ratio R against
+//    this frame's around the pixel, r_t = sum w T r / sum w T over the 5 x 5 pixels on the same surface
+//    (w: normal and tangent plane as the history's own test), z = |r_t - R| / sqrt(var r_t + var R) with
+//    var r_t = sum (w T)^2 / (sum w T)^2 / (4k) (k Bernoulli samples a pixel at their widest), kept whole
+//    to z = 2 and dropped from z = 4 on. A pixel's k samples alone tell a lagging history only when its
+//    shadow flips; the window's 25 k tell a drift of a tenth (measured on the moving lamp: the pixel's own
+//    test kept 99% of a history that doubled the error);
 //  - unshadowed (the lightcuts' shadowed estimate, one noisy value): y from the same z test of the frame's
 //    luminance l_t against the history's mean and spread, x = y (a history of one frame, which has no
-//    spread, kept only where nothing changed).
-vec2 historyKept(vec4 irradianceSum, vec4 ratioSum, float resolved, vec4 rawRatio, float l, bool shadowed) {
+//    spread, by the gradient; the LGH's unshadowed irradiance, whole, none).
+vec2 historyKept(ivec2 pixel, Surface s, vec4 irradianceSum, vec4 ratioSum, float resolved, float l, bool shadowed) {
   float n = irradianceSum.a;
   if (n < 0.5) return vec2(1.0);
   float previous = ratioSum.a, largest = max(resolved, previous);
   float gradient = largest > 0.0 ? abs(resolved - previous) / largest : 0.0;
   float irradianceKept = clamp(1.0 - gradient / accum.motionTolerance, 0.0, 1.0);
+  // A whole irradiance (every light at every pixel) is all there is to know of the frame's: its history
+  // adds nothing, and gives way to it outright.
+  if (accum.irradianceWhole != 0u) irradianceKept = 0.0;
   if (!shadowed) {
-    if (n < 1.5) return vec2(gradient == 0.0 ? 1.0 : 0.0);  // one frame has no spread to judge a change by
+    if (accum.irradianceWhole != 0u) return vec2(0.0);
+    if (n < 1.5) return vec2(irradianceKept);  // one frame has no spread to judge by: its gradient decides
     float mean = ratioSum.g / n;
     float spread = max(ratioSum.b / n - mean * mean, 0.0) * (1.0 + 1.0 / n);
     float z = abs(l - mean) / sqrt(max(spread, 1e-30 * mean * mean + 1e-37));
     return vec2(clamp(2.0 - 0.5 * z, 0.0, 1.0));
   }
-  // Without interleaving the frame's irradiance is whole (every VPL, every pixel): its history adds nothing.
-  vec2 kept = vec2(accum.tilesPerAxis > 1u ? irradianceKept : 0.0, 1.0);
-  float weight = rawRatio.b;
-  if (weight > 0.0 && ratioSum.g > 0.0) {
-    float history = ratioSum.r / ratioSum.g;
-    float variance = max(rawRatio.g / (weight * weight), 0.25 / float(accum.shadowSamples)) +
-                     ratioSum.b / (ratioSum.g * ratioSum.g);
-    float z = abs(rawRatio.r - history) / sqrt(variance);
-    kept.y = clamp(2.0 - 0.5 * z, 0.0, 1.0);
+  vec2 kept = vec2(irradianceKept, 1.0);
+  if (ratioSum.g <= 0.0) return kept;
+  float footprint = max(distance(frame.cameraPosition.xyz, s.position) * frame.sceneScale.z, 1e-30);
+  float weighted = 0.0, weights = 0.0, squares = 0.0;
+  for (int dy = -2; dy <= 2; ++dy) {
+    for (int dx = -2; dx <= 2; ++dx) {
+      ivec2 q = pixel + ivec2(dx, dy);
+      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(frame.resolution.xy)))) continue;
+      Surface n = loadSurface(q);
+      if (!n.valid || dot(n.normal, s.normal) < accum.normalTolerance ||
+          abs(dot(s.normal, n.position - s.position)) > accum.planeTolerance * footprint)
+        continue;
+      vec4 raw = texelFetch(rawRatios, q, 0);
+      float w = max(raw.b, 0.0);
+      weighted += w * raw.r;
+      weights += w;
+      squares += w * w;
+    }
   }
+  if (weights <= 0.0) return kept;
+  float history = ratioSum.r / ratioSum.g;
+  float variance = squares / (weights * weights) * 0.25 / float(accum.shadowSamples) +
+                   ratioSum.b / (ratioSum.g * ratioSum.g);
+  float z = abs(weighted / weights - history) / sqrt(max(variance, 1e-30));
+  kept.y = clamp(2.0 - 0.5 * z, 0.0, 1.0);
   return kept;
 }
 
@@ -190,13 +214,21 @@ void main() {
   // be a noisy part) in the share `replaced`; then the whole history scaled to what is kept.
   float replaced = accum.motion == kMotionRatio ? 1.0 : 0.0;
   if (accum.motion == kMotionGradient) {
-    vec2 kept = historyKept(irradianceSum, ratioSum, resolved, rawRatio, l, shadowed);
+    vec2 kept = historyKept(pixel, s, irradianceSum, ratioSum, resolved, l, shadowed);
     replaced = 1.0 - kept.x;
     irradianceSum *= kept.y;
     ratioSum *= kept.y;
     if (kept.y == 0.0) heaviest = vec4(0.0);
   }
+  // The ratio's weights T were drawn against the irradiance they replace: scaled with it, so that their mean
+  // weight D = sum T / sum C (what the correction multiplies the irradiance by) stays what the samples said.
+  float replacedLuminance = luminance(irradianceSum.rgb);
   irradianceSum.rgb = mix(irradianceSum.rgb, resolvedIrradiance * irradianceSum.a, replaced);
+  if (replaced > 0.0 && replacedLuminance > 0.0) {
+    float scale = max(luminance(irradianceSum.rgb), 0.0) / replacedLuminance;
+    ratioSum.rgb *= vec3(scale, scale, scale * scale);
+    heaviest.rg *= scale;
+  }
   // At the cap the sums are scaled to maxFrames - 1 frames first: a moving average of the last frames.
   float n = irradianceSum.a;
   if (n > accum.maxFrames - 1.0) {

@@ -200,9 +200,9 @@ FrameStats Renderer::render(const CameraView& view) {
 
 void Renderer::accumulate(const IndirectFrame& frame, const CameraView& view, bool moved) {
   const AccumulationSource source = method_->accumulation(frame);
-  accumulationPass_.execute(
-      {gbuffer_, view, source.rawIrradiance, source.layout, source.shadowSamples, kInterleaveResolve, moved},
-      settings_.accumulation, source.targets);
+  accumulationPass_.execute({gbuffer_, view, source.rawIrradiance, source.layout, source.shadowSamples,
+                             kInterleaveResolve, moved, source.wholeIrradiance},
+                            settings_.accumulation, source.targets);
 }
 
 void Renderer::restartAccumulation() {

@@ -65,6 +65,9 @@ class RenderBench {
   const std::filesystem::path& scenePath() const { return path_; }
   const std::string& sceneReason() const { return why_; }  // why this scene, for the output
   const Scene& scene() const { return scene_; }
+  // For a bench that moves the scene (poseScene) and has the GPU follow it (SceneGpu::follow).
+  Scene& movingScene() { return scene_; }
+  SceneGpu& sceneGpu() { return *gpu_; }
   const gl::Context& context() const { return *context_; }
   BenchRenderer& renderer() { return *renderer_; }
 

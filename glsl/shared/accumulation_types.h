@@ -34,13 +34,16 @@ GPU_STRUCT(AccumulationUniforms) {
   float planeSigma;       // stage 1: tangent-plane distance in pixel footprints at weight e^-1/2
   uint motion;            // kMotion*
   float motionTolerance;  // kMotionGradient: the relative irradiance change that drops all history
+
+  uint irradianceWhole;  // the frame's irradiance is its lights' exact sum (the LGH without interleaving)
+  uint pad0, pad1, pad2;
 };
 GPU_CHECK_OFFSET(AccumulationUniforms, previousCameraPosition, 64);
 GPU_CHECK_OFFSET(AccumulationUniforms, maxFrames, 76);
 GPU_CHECK_OFFSET(AccumulationUniforms, stage, 80);
 GPU_CHECK_OFFSET(AccumulationUniforms, tileWidth, 96);
 GPU_CHECK_OFFSET(AccumulationUniforms, normalPower, 112);
-GPU_CHECK_SIZE(AccumulationUniforms, 128);
+GPU_CHECK_SIZE(AccumulationUniforms, 144);
 
 GPU_NAMESPACE_END
 #endif

@@ -50,7 +50,8 @@
 #define LGH_TEXTURE_ACCUM_RATIO_SUM 6          // accumulation history: shadowed and unshadowed luminance sums
 #define LGH_TEXTURE_ACCUM_PREVIOUS_POSITION 7  // accumulation history: the surfaces it belongs to
 #define LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL 8
-#define LGH_TEXTURE_ACCUM_HEAVIEST 9  // accumulation history: the frame with the largest mean weight
+#define LGH_TEXTURE_ACCUM_HEAVIEST 9    // accumulation history: the frame with the largest mean weight
+#define LGH_TEXTURE_ACCUM_RAW_RATIO 10  // accumulation under motion: this frame's raw ratio (a copy)
 // The scene's BVH (render/scene/gpu_bvh.h), where every shader that traces reads it: the last four of the
 // 16 units any compute shader has.
 #define LGH_TEXTURE_BVH_NODE_FLOATS 12

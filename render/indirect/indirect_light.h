@@ -63,6 +63,7 @@ struct AccumulationSource {
   TileLayout layout;      // tiled when interleaving splits the surfaces
   int shadowSamples = 0;  // the ratio target holds this frame's raw ratio (0: the luminance's moments go there)
   AccumulationTargets targets;
+  bool wholeIrradiance = false;  // the raw irradiance is its lights' exact sum, the same every still frame
 };
 
 // What the composite reads.

@@ -177,7 +177,8 @@ AccumulationSource LghIndirect::accumulation(const IndirectFrame& frame) {
   // This frame's raw irradiance and ratio, in the light pass's layout (the tiles' when interleaving).
   const int k = frame.settings.shadows.samples;
   if (interleaved()) return {tiles_.irradiance, tiles_.layout, k, {irradiance_, rawRatio_, sampledIrradiance_}};
-  return {irradiance_, fullLayout(), k, {irradiance_, rawRatio_, sampledIrradiance_}};
+  // Without interleaving the light pass sums every grid light at every pixel: the same each still frame.
+  return {irradiance_, fullLayout(), k, {irradiance_, rawRatio_, sampledIrradiance_}, true};
 }
 
 IndirectImage LghIndirect::filter(const IndirectFrame& frame) {

@@ -19,6 +19,7 @@ AccumulationPass::AccumulationPass()
 void AccumulationPass::release() {
   history_[0] = {};
   history_[1] = {};
+  rawRatios_ = {};
   hasHistory_ = false;
   uniforms_.release();
 }
@@ -59,6 +60,7 @@ void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationS
   // What a frame in which the lights or the geometry moved does with the history (restart: nothing left).
   sums.motion = in.moved && hasHistory_ ? unsigned(settings.motion) + 1u : gpu::kMotionNone;
   sums.motionTolerance = std::max(settings.motionTolerance, 1e-6f);
+  sums.irradianceWhole = in.wholeIrradiance ? 1u : 0u;
   gpu::AccumulationUniforms resolve = sums;
   const InterleaveFilter& filter = in.resolve;
   resolve.stage = gpu::kAccumulateResolveIncomplete;
@@ -71,6 +73,15 @@ void AccumulationPass::execute(const AccumulationInputs& in, const AccumulationS
   previous.irradianceSum.bindTexture(LGH_TEXTURE_ACCUM_IRRADIANCE_SUM);
   previous.ratioSum.bindTexture(LGH_TEXTURE_ACCUM_RATIO_SUM);
   previous.heaviest.bindTexture(LGH_TEXTURE_ACCUM_HEAVIEST);
+  // The history test under motion reads the raw ratios around each pixel, which the pass overwrites in place.
+  if (sums.motion == gpu::kMotionGradient && in.shadowSamples > 0) {
+    if (rawRatios_.width() != gbuffer.width || rawRatios_.height() != gbuffer.height)
+      rawRatios_ = gl::Texture2D({passes::kAccumulation, "raw ratios under motion", kImageSize}, gbuffer.width,
+                                 gbuffer.height, GL_RGBA32F);
+    glCopyImageSubData(io.ratio.id(), GL_TEXTURE_2D, 0, 0, 0, 0, rawRatios_.id(), GL_TEXTURE_2D, 0, 0, 0, 0,
+                       gbuffer.width, gbuffer.height, 1);
+    rawRatios_.bindTexture(LGH_TEXTURE_ACCUM_RAW_RATIO);
+  }
   previous.position.bindTexture(LGH_TEXTURE_ACCUM_PREVIOUS_POSITION);
   previous.normal.bindTexture(LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL);
   io.irradiance.bindImage(LGH_IMAGE_ACCUM_IRRADIANCE, GL_READ_WRITE);

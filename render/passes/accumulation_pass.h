@@ -36,7 +36,8 @@ struct AccumulationInputs {
   TileLayout layout;                              // tiled when layout.tilesPerAxis > 1
   int shadowSamples = 0;                          // k: the ratio target holds this frame's raw ratio (0: not read)
   InterleaveFilter resolve = kInterleaveResolve;  // the weights of the resolve of incomplete sums
-  bool moved = false;  // the lights or the geometry moved since the last frame (AccumulationSettings::motion)
+  bool moved = false;            // the lights or the geometry moved since the last frame (AccumulationSettings::motion)
+  bool wholeIrradiance = false;  // rawIrradiance is its lights' exact sum (AccumulationSource::wholeIrradiance)
 };
 
 // Read and written in place.
@@ -62,7 +63,8 @@ class AccumulationPass {
   gl::Program program_;
   gl::UniformBlocks uniforms_;  // one gpu::AccumulationUniforms per dispatch
   History history_[2];
-  int current_ = 0;  // history_[current_] holds the last frame's history
+  gl::Texture2D rawRatios_;  // under motion: this frame's raw ratio, for the neighbourhoods of the history test
+  int current_ = 0;          // history_[current_] holds the last frame's history
   bool hasHistory_ = false;
   CameraView previousView_;
 };

@@ -1,0 +1,262 @@
+#include "bench/engine/motion_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+
+#include "bench/common/ranks.h"
+#include "bench/common/table.h"
+#include "bench/reference/reference.h"
+#include "bench/sweep/sweep_reference.h"
+#include "bench/sweep/sweep_stats.h"
+#include "render/image_compare.h"
+#include "render/passes/lgh_build_pass.h"
+#include "render/scene/scripted_motion.h"
+
+namespace lgh::bench {
+namespace {
+
+// One way of rendering the sequence, with its own renderer (and so its own history).
+struct Configuration {
+  std::string name;
+  RenderSettings settings;
+  bool redrawVpls = false;  // the VPLs drawn from new random numbers every frame (seed + frame)
+};
+
+std::vector<Configuration> configurations(const MotionBenchOptions& options) {
+  const RenderSettings base = options.render.settings;
+  const auto make = [&](std::string name, IndirectMethod method, bool history, HistoryMotion motion,
+                        bool redraw = false) {
+    Configuration c{std::move(name), base, redraw};
+    c.settings.indirectMethod = method;
+    c.settings.accumulation.enabled = history;
+    c.settings.accumulation.motion = motion;
+    return c;
+  };
+  std::vector<Configuration> list = {
+      make("lgh, no history", IndirectMethod::Lgh, false, HistoryMotion::Restart),
+      make("lgh, ratio history (paper)", IndirectMethod::Lgh, true, HistoryMotion::Ratio),
+      make("lgh, tested history", IndirectMethod::Lgh, true, HistoryMotion::Gradient),
+      make("lgh, no history, VPLs redrawn", IndirectMethod::Lgh, false, HistoryMotion::Restart, true),
+  };
+  if (options.lightcutSamples > 0) {
+    for (bool history : {false, true}) {
+      Configuration c = make(history ? "lightcuts, tested history" : "lightcuts, no history", IndirectMethod::Rtslc,
+                             history, HistoryMotion::Gradient);
+      c.settings.rtslc.samples = options.lightcutSamples;
+      list.push_back(c);
+    }
+  }
+  return list;
+}
+
+// The shadowed indirect irradiance's luminance at the reference's pixels (the lightcuts' is shadowed already:
+// their visibility reads 1).
+std::vector<double> shadowedAtPixels(const Renderer& renderer, const reference::ReferenceImage& ref) {
+  const ImageRGBA irradiance = renderer.readImage(Aov::Irradiance), visibility = renderer.readImage(Aov::Visibility);
+  std::vector<double> values(ref.pixels.size());
+  for (size_t k = 0; k < ref.pixels.size(); ++k)
+    values[k] = luminance(irradiance.pixels[ref.pixels[k]]) * double(visibility.pixels[ref.pixels[k]].r);
+  return values;
+}
+
+struct Series {
+  std::vector<double> error, temporal, ms;
+  std::vector<double> last;  // the previous frame's values at the reference's pixels
+};
+
+double rms(const std::vector<double>& v, size_t from = 0) {
+  double sum = 0;
+  for (size_t i = from; i < v.size(); ++i) sum += v[i] * v[i];
+  return v.size() > from ? std::sqrt(sum / double(v.size() - from)) : kNaN;
+}
+double mean(const std::vector<double>& v, size_t from = 0) {
+  double sum = 0;
+  for (size_t i = from; i < v.size(); ++i) sum += v[i];
+  return v.size() > from ? sum / double(v.size() - from) : kNaN;
+}
+
+// The reference's shadowed irradiance and the image's side by side, tone-mapped, for the animated figure.
+void writeSideBySide(const std::filesystem::path& file, const reference::ReferenceImage& ref, const Renderer& renderer,
+                     float exposure) {
+  const ImageRGBA irradiance = renderer.readImage(Aov::Irradiance), visibility = renderer.readImage(Aov::Visibility);
+  ImageRGBA both;
+  both.width = 2 * ref.width;
+  both.height = ref.height;
+  both.pixels.assign(size_t(both.width) * size_t(both.height), glm::vec4(0, 0, 0, 1));
+  for (size_t k = 0; k < ref.pixels.size(); ++k) {
+    const size_t x = ref.pixels[k] % size_t(ref.width), y = ref.pixels[k] / size_t(ref.width);
+    both.pixels[y * size_t(both.width) + x] = glm::vec4(glm::vec3(ref.shadowed[k]), 1.0f);
+    both.pixels[y * size_t(both.width) + size_t(ref.width) + x] =
+        glm::vec4(glm::vec3(irradiance.pixels[ref.pixels[k]]) * visibility.pixels[ref.pixels[k]].r, 1.0f);
+  }
+  writeImage(file, both, exposure, ToneMap::Aces);
+}
+
+}  // namespace
+
+CLI::App* addMotionCommand(CLI::App& app, MotionBenchOptions& options) {
+  CLI::App* command = app.add_subcommand(
+      "motion", "an animated sequence per configuration against each frame's exact reference: error and flicker");
+  options.render.scene = (std::filesystem::path(LGH_SOURCE_DIR) / "data" / "cornell_moving_light.gltf").string();
+  options.render.settings.inputLights.vpls = 10000;
+  options.render.settings.image.width = 160;
+  options.render.settings.image.height = 90;
+  addRenderBenchOptions(*command, options.render, kMotionOwnSettings);
+  command->add_option("--frames", options.frames, "frames of the sequence")
+      ->check(CLI::Range(2, 100000))
+      ->capture_default_str();
+  command->add_option("--fps", options.fps, "frames a second (the animation's time step)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--time", options.startTime,
+                      "seconds into the animation of the first frame (default: its start)");
+  command->add_option("--sun-step", options.sunStep, "every sun turns DAZIMUTH,DELEVATION degrees a frame");
+  command->add_option("--point-step", options.pointStep, "every point light moves DX,DY,DZ a frame");
+  command->add_option("--orbit-step", options.orbitStep, "the camera orbits the scene's centre DEG degrees a frame");
+  command->add_option("--lightcut-samples", options.lightcutSamples, "the lightcuts' samples per pixel (0: none)")
+      ->capture_default_str();
+  command->add_option("--reference-pixels", options.referencePixels, "share of the pixels each frame's reference has")
+      ->check(CLI::Range(1e-4, 1.0))
+      ->capture_default_str();
+  command->add_option("--reference-cache", options.referenceCache,
+                      "reference cache folder (default: beside lgh-bench)");
+  command->add_option("--csv", options.csvPath, "per frame and configuration: error, temporal error, ms");
+  command->add_option("--images", options.imageDir,
+                      "folder for each frame's reference | tested-history image (needs --reference-pixels 1)");
+  return command;
+}
+
+int runMotionBench(const MotionBenchOptions& options) {
+  const Ranks& ranks = Ranks::world();
+  if (ranks.distributed()) throw std::invalid_argument("lgh-bench motion runs on one rank (its frames are in order)");
+  RenderBench bench(options.render);
+  Scene& scene = bench.movingScene();
+  SceneGpu& gpu = bench.sceneGpu();
+  const ScriptedMotion motion = parseScriptedMotion(options.sunStep, options.pointStep, options.orbitStep);
+  if (scene.animation.empty() && motion.empty())
+    throw std::invalid_argument(bench.scenePath().string() +
+                                " has no animation: give --sun-step, --point-step or --orbit-step to move it");
+  const double start = options.startTime >= 0 ? options.startTime : scene.animation.start;
+  std::vector<Configuration> configs = configurations(options);
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  for (const Configuration& c : configs) renderers.push_back(std::make_unique<Renderer>(gpu, c.settings));
+  std::vector<Series> series(configs.size());
+
+  const SceneSpec spec{bench.scenePath(), options.render.settings.image.camera, bench.scenePath().stem().string()};
+  ReferenceRequest request;
+  request.pixels = options.referencePixels;
+  request.run.cacheDir =
+      options.referenceCache.empty() ? defaultReferenceCache() : std::filesystem::path(options.referenceCache);
+  request.run.progress = false;
+  std::printf("lgh-bench motion: %s, %d frames at %g fps from %g s, %d x %d, %d VPLs (budget); %s\n", spec.name.c_str(),
+              options.frames, options.fps, start, options.render.settings.image.width,
+              options.render.settings.image.height, options.render.settings.inputLights.vpls,
+              bench.context().description().c_str());
+  std::ofstream csv;
+  if (!options.csvPath.empty()) {
+    csv.open(options.csvPath);
+    if (!csv) throw std::runtime_error(options.csvPath + ": cannot write");
+    csv << "frame,time,configuration,error,temporal_error,ms,bvh_build_ms,reference_pixels\n";
+  }
+  if (!options.imageDir.empty()) std::filesystem::create_directories(options.imageDir);
+
+  const std::vector<PunctualLight> startLights = scene.lights;
+  std::vector<double> lastReference;
+  std::unique_ptr<reference::OcclusionScene> occlusion;
+  for (int f = 0; f < options.frames; ++f) {
+    const double time = start + double(f) / options.fps;
+    PoseChange change = poseScene(scene, time);
+    Camera camera = resolveCamera(scene, options.render.settings);
+    change.merge(applyScriptedMotion(motion, f, startLights, scene, camera));
+    gpu.follow(change);
+    if (!occlusion || change.geometry)
+      occlusion = std::make_unique<reference::OcclusionScene>(scene.positions, scene.indices);
+    const CameraView view =
+        makeCameraView(camera, options.render.settings.image.width, options.render.settings.image.height);
+    std::vector<FrameStats> stats(configs.size());
+    for (size_t c = 0; c < configs.size(); ++c) {
+      if (configs[c].redrawVpls) {
+        RenderSettings s = configs[c].settings;
+        s.inputLights.seed = configs[c].settings.inputLights.seed + 1 + f;
+        renderers[c]->setSettings(s);
+      }
+      stats[c] = renderers[c]->render(view);
+      if (stats[c].nonFinitePixels > 0)
+        throw std::runtime_error(configs[c].name + ": " + std::to_string(stats[c].nonFinitePixels) +
+                                 " NaN/Inf pixels at frame " + std::to_string(f));
+    }
+    // The reference of this frame: the first configuration's G-buffer and S0 (every configuration but the
+    // redrawn one draws the same S0 and sees the same surfaces).
+    const Renderer& first = *renderers[0];
+    const std::vector<gpu::GpuLight> lights =
+        first.inputLights().lights.download<gpu::GpuLight>(first.inputLights().count);
+    ReferenceInfo info;
+    request.run.label = "reference frame " + std::to_string(f);
+    const reference::ReferenceImage ref = obtainReference(ranks, *occlusion, spec, configs[0].settings,
+                                                          referenceInput(first, fromGpuLights(lights)), request, info);
+    std::vector<double> reference(ref.pixels.size());
+    double norm = 0;
+    for (size_t k = 0; k < ref.pixels.size(); ++k) {
+      reference[k] = luminance(ref.shadowed[k]);
+      norm += reference[k] * reference[k];
+    }
+    norm = std::max(norm, 1e-300);
+    for (size_t c = 0; c < configs.size(); ++c) {
+      const std::vector<double> values = shadowedAtPixels(*renderers[c], ref);
+      double squared = 0, changeSquared = 0;
+      for (size_t k = 0; k < values.size(); ++k) {
+        squared += (values[k] - reference[k]) * (values[k] - reference[k]);
+        if (f > 0) {
+          const double d = (values[k] - series[c].last[k]) - (reference[k] - lastReference[k]);
+          changeSquared += d * d;
+        }
+      }
+      Series& s = series[c];
+      s.error.push_back(std::sqrt(squared / norm));
+      if (f > 0) s.temporal.push_back(std::sqrt(changeSquared / norm));
+      s.ms.push_back(stats[c].totalMs() - stats[c].passMs(passes::kBvhBuild));
+      s.last = values;
+      if (csv)
+        csv << f << ',' << time << ',' << configs[c].name << ',' << s.error.back() << ','
+            << (f > 0 ? std::to_string(s.temporal.back()) : "") << ',' << s.ms.back() << ','
+            << stats[c].passMs(passes::kBvhBuild) << ',' << ref.pixels.size() << '\n';
+    }
+    lastReference = reference;
+    if (!options.imageDir.empty() && ref.full()) {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%04d.png", f);
+      writeSideBySide(std::filesystem::path(options.imageDir) / name, ref, *renderers[2],
+                      options.render.settings.image.exposure);
+    }
+    std::printf("  frame %3d  t %.3f s  reference %zu px (%s)  errors:", f, time, ref.pixels.size(),
+                info.cached ? "cached" : "computed");
+    for (const Series& s : series) std::printf(" %.3f", s.error.back());
+    std::printf("\n");
+    std::fflush(stdout);
+  }
+
+  TextTable table({"configuration", "mean error", "temporal error (RMS)", "temporal / no history", "ms a frame"});
+  for (size_t c = 0; c < configs.size(); ++c) {
+    const Series& s = series[c];
+    // Against the same method's first configuration, its no-history one.
+    size_t base = 0;
+    while (configs[base].settings.indirectMethod != configs[c].settings.indirectMethod) ++base;
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.2f", rms(s.temporal) / rms(series[base].temporal));
+    char e[32], t[32];
+    std::snprintf(e, sizeof e, "%.4f", mean(s.error));
+    std::snprintf(t, sizeof t, "%.4f", rms(s.temporal));
+    table.addRow({configs[c].name, e, t, ratio, formatMs(mean(s.ms, 1))});
+  }
+  std::printf("over the sequence (errors relative to the reference's RMS; frame 0's time left out):\n");
+  table.print(stdout);
+  return 0;
+}
+
+}  // namespace lgh::bench
