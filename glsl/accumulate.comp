@@ -108,7 +108,7 @@ ivec2 historyPixel(Surface s, ivec2 size) {
 //    test kept 99% of a history that doubled the error);
 //  - unshadowed (the lightcuts' shadowed estimate, one noisy value): y from the same z test of the frame's
 //    luminance l_t against the history's mean and spread, x = y (a history of one frame, which has no
-//    spread, by the gradient; the LGH's unshadowed irradiance, whole, none).
+//    spread, kept below a gradient of 1/2; the LGH's unshadowed irradiance, whole, none).
 vec2 historyKept(ivec2 pixel, Surface s, vec4 irradianceSum, vec4 ratioSum, float resolved, float l, bool shadowed) {
   float n = irradianceSum.a;
   if (n < 0.5) return vec2(1.0);
@@ -120,7 +120,9 @@ vec2 historyKept(ivec2 pixel, Surface s, vec4 irradianceSum, vec4 ratioSum, floa
   if (accum.irradianceWhole != 0u) irradianceKept = 0.0;
   if (!shadowed) {
     if (accum.irradianceWhole != 0u) return vec2(0.0);
-    if (n < 1.5) return vec2(irradianceKept);  // one frame has no spread to judge by: its gradient decides
+    // One frame has no spread to judge a change by: kept unless the luminance changed by half, so that a
+    // noisy estimate's history can grow to the two frames the z test needs under continuous motion.
+    if (n < 1.5) return vec2(gradient <= 0.5 ? 1.0 : 0.0);
     float mean = ratioSum.g / n;
     float spread = max(ratioSum.b / n - mean * mean, 0.0) * (1.0 + 1.0 / n);
     float z = abs(l - mean) / sqrt(max(spread, 1e-30 * mean * mean + 1e-37));

@@ -160,6 +160,8 @@ int runMotionBench(const MotionBenchOptions& options) {
               bench.context().description().c_str());
   std::ofstream csv;
   if (!options.csvPath.empty()) {
+    const std::filesystem::path folder = std::filesystem::path(options.csvPath).parent_path();
+    if (!folder.empty()) std::filesystem::create_directories(folder);
     csv.open(options.csvPath);
     if (!csv) throw std::runtime_error(options.csvPath + ": cannot write");
     csv << "frame,time,configuration,error,temporal_error,ms,bvh_build_ms,reference_pixels\n";
@@ -223,7 +225,7 @@ int runMotionBench(const MotionBenchOptions& options) {
       s.ms.push_back(stats[c].totalMs() - stats[c].passMs(passes::kBvhBuild));
       s.last = values;
       if (csv)
-        csv << f << ',' << time << ',' << configs[c].name << ',' << s.error.back() << ','
+        csv << f << ',' << time << ",\"" << configs[c].name << "\"," << s.error.back() << ','
             << (f > 0 ? std::to_string(s.temporal.back()) : "") << ',' << s.ms.back() << ','
             << stats[c].passMs(passes::kBvhBuild) << ',' << ref.pixels.size() << '\n';
     }
