@@ -9,10 +9,10 @@ layout(binding = LGH_TEXTURE_DISPLAY_IMAGE) uniform usampler2D image;  // R32UI 
 #else
 layout(binding = LGH_TEXTURE_DISPLAY_IMAGE) uniform sampler2D image;
 #endif
-uniform uint encoding;      // kDisplayRadiance, kDisplayData, kDisplayRatio, kDisplayCounts
+uniform uint encoding;      // kDisplayRadiance, kDisplayData, kDisplayRatio, kDisplayCounts, kDisplayHistory
 uniform float exposureEV;   // radiance only
 uniform uint toneCurve;     // radiance only: kToneMapClamp, kToneMapReinhard, kToneMapAces
-uniform float largestCount; // counts only
+uniform float largestCount; // counts and history only
 
 layout(location = 0) out vec4 color;
 
@@ -27,6 +27,8 @@ void main() {
     color = vec4(encodeForDisplay(value.rgb, exposureEV, toneCurve), 1.0);
   else if (encoding == kDisplayRatio)
     color = vec4(encodeForDisplay(vec3(value.r), 0.0, kToneMapClamp), 1.0);
+  else if (encoding == kDisplayHistory)
+    color = vec4(encodeForDisplay(heatColor(min(value.a / largestCount, 1.0)), 0.0, kToneMapClamp), 1.0);
   else
     color = vec4(encodeForDisplay(value.rgb, 0.0, kToneMapClamp), 1.0);
 #endif

@@ -10,10 +10,10 @@ struct AovName {
   const char* name;
 };
 constexpr AovName kAovNames[] = {
-    {Aov::Final, "final"},           {Aov::Direct, "direct"},     {Aov::Indirect, "indirect"},
-    {Aov::Irradiance, "irradiance"}, {Aov::Ratio, "ratio"},       {Aov::Visibility, "visibility"},
-    {Aov::Overdraw, "overdraw"},     {Aov::Emission, "emission"}, {Aov::Albedo, "albedo"},
-    {Aov::Normal, "normal"},         {Aov::Position, "position"}};
+    {Aov::Final, "final"},           {Aov::Direct, "direct"},   {Aov::Indirect, "indirect"},
+    {Aov::Irradiance, "irradiance"}, {Aov::Ratio, "ratio"},     {Aov::Visibility, "visibility"},
+    {Aov::Overdraw, "overdraw"},     {Aov::History, "history"}, {Aov::Emission, "emission"},
+    {Aov::Albedo, "albedo"},         {Aov::Normal, "normal"},   {Aov::Position, "position"}};
 
 }  // namespace
 
@@ -32,8 +32,8 @@ std::vector<std::string> aovNames() {
 }
 
 bool isDataAov(Aov aov) {
-  return aov == Aov::Overdraw || aov == Aov::Ratio || aov == Aov::Visibility || aov == Aov::Albedo ||
-         aov == Aov::Normal || aov == Aov::Position;
+  return aov == Aov::Overdraw || aov == Aov::History || aov == Aov::Ratio || aov == Aov::Visibility ||
+         aov == Aov::Albedo || aov == Aov::Normal || aov == Aov::Position;
 }
 
 }  // namespace lgh

@@ -15,7 +15,22 @@ namespace lgh {
 //               with the lightcuts their shadowed irradiance, accumulated and filtered
 //   ratio       unfiltered visibility ratio of the indirect light (mean of the k shadow rays, accumulated)
 //   visibility  the filtered ratio that multiplies the indirect light
-enum class Aov { Final, Direct, Indirect, Irradiance, Ratio, Visibility, Overdraw, Emission, Albedo, Normal, Position };
+//   history     frames in each pixel's accumulated history (heat map; black without accumulation, and with the
+//               lightcuts' shadowed denoiser): where a moved light or mesh kept it and where it started anew
+enum class Aov {
+  Final,
+  Direct,
+  Indirect,
+  Irradiance,
+  Ratio,
+  Visibility,
+  Overdraw,
+  History,
+  Emission,
+  Albedo,
+  Normal,
+  Position
+};
 Aov parseAov(const std::string& name);
 std::vector<std::string> aovNames();
 // AOVs that hold data rather than radiance: written without exposure or tone curve.

@@ -281,6 +281,8 @@ const gl::Texture2D* Renderer::target(Aov aov) const {
       return &gbuffer_.normal;
     case Aov::Position:
       return &gbuffer_.position;
+    case Aov::History:  // the accumulated ratio's alpha: its frames
+      return accumulating() && method_ ? method_->target(Aov::Ratio) : nullptr;
     case Aov::Irradiance:  // the method's: with the lightcuts shadowed, and filtered as the composite uses it
     case Aov::Ratio:
     case Aov::Visibility:
@@ -291,6 +293,14 @@ const gl::Texture2D* Renderer::target(Aov aov) const {
 }
 
 ImageRGBA Renderer::readImage(Aov aov) const {
+  if (aov == Aov::History) {
+    // Frames per pixel as a heat map over the frame's longest history (as the viewer shows it).
+    std::vector<glm::vec4> pixels = texture(aov).readRGBA();
+    float longest = 1.0f;
+    for (const glm::vec4& p : pixels) longest = std::max(longest, p.a);
+    for (glm::vec4& p : pixels) p = glm::vec4(gpu::heatColor(p.a / longest), 1.0f);
+    return fromGLRows(settings_.image.width, settings_.image.height, std::move(pixels));
+  }
   if (aov == Aov::Overdraw) {
     // Fragments per pixel as a heat map scaled to the frame's largest count (the paper's Fig. 5).
     const std::vector<GLuint> counts = texture(aov).readUint();

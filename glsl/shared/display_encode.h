@@ -25,6 +25,7 @@ GPU_CONST uint kDisplayRadiance = 0u;
 GPU_CONST uint kDisplayData = 1u;
 GPU_CONST uint kDisplayRatio = 2u;
 GPU_CONST uint kDisplayCounts = 3u;
+GPU_CONST uint kDisplayHistory = 4u;  // the history length in alpha, a heat map over largestCount
 
 // Exposure (EV), tone curve and the sRGB transfer function: linear radiance to [0, 1].
 GPU_FUNC vec3 encodeForDisplay(vec3 linear, float exposureEV, uint toneCurve) {

@@ -30,6 +30,7 @@ std::vector<std::uint8_t> DisplayImage::readRGB() const {
 
 std::uint32_t displayEncodingOf(Aov aov) {
   if (aov == Aov::Overdraw) return gpu::kDisplayCounts;
+  if (aov == Aov::History) return gpu::kDisplayHistory;
   if (aov == Aov::Ratio || aov == Aov::Visibility) return gpu::kDisplayRatio;
   return isDataAov(aov) ? gpu::kDisplayData : gpu::kDisplayRadiance;
 }

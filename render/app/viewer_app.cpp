@@ -52,7 +52,7 @@ std::string aovName(Aov aov) {
 
 }  // namespace
 
-Viewer::Viewer(const Scene& scene, gl::Context& context, const ViewerState& initial, const ViewerOptions& options)
+Viewer::Viewer(Scene& scene, gl::Context& context, const ViewerState& initial, const ViewerOptions& options)
     : sceneData_(scene),
       context_(context),
       window_(context.window()),
@@ -89,7 +89,7 @@ Viewer::Viewer(const Scene& scene, gl::Context& context, const ViewerState& init
   gl::checkErrors("ImGui set-up");
 
   resetCamera();
-  lastTime_ = glfwGetTime();
+  lastTime_ = lastAnimationTime_ = glfwGetTime();
   glfwGetCursorPos(window_, &lastCursor_.x, &lastCursor_.y);
 }
 
@@ -147,6 +147,11 @@ bool Viewer::runCommand(const ScriptCommand& c) {
       applyLightChanges({size_t(c.number)});
       break;
     }
+    case Kind::Time:
+      state_.time = c.seconds;
+      state_.playing = false;
+      playAnimation(0.0);
+      break;
     case Kind::Screenshot:
       if (!rendered_ || frameKey() != renderedKey_) step(true);
       writeScreenshot(c.name);
@@ -217,8 +222,11 @@ void Viewer::step(bool forceRender) {
     info.fixedSize = fixedSize_;
     requests = drawPanel(state_, info);
   }
+  const double now = glfwGetTime();
   handleInput(requests);
   applyLightChanges(requests.changedLights);
+  playAnimation(std::clamp(now - lastAnimationTime_, 0.0, 0.25));
+  lastAnimationTime_ = now;
   if (state_.view == Aov::Overdraw) state_.settings.lightPass.overdraw = true;
   if (state_.settings.image.camera != cameraSetting_ || requests.resetCamera) resetCamera();
 
@@ -303,6 +311,21 @@ void Viewer::applyLightChanges(const std::vector<size_t>& changed) {
   for (size_t i : changed) scene_.setPunctualLight(i, state_.lights[i]);
 }
 
+void Viewer::playAnimation(double dt) {
+  const SceneAnimation& animation = sceneData_.animation;
+  if (animation.empty()) return;
+  if (state_.playing) {
+    state_.time += dt;
+    const double length = animation.end - animation.start;
+    if (state_.time > animation.end)
+      state_.time = length > 0 ? animation.start + std::fmod(state_.time - animation.start, length) : animation.start;
+  }
+  PoseChange change = poseScene(sceneData_, state_.time);
+  change.cameras = false;  // the viewer's camera is the user's
+  for (size_t i : change.lights) state_.lights[i] = sceneData_.lights[i];
+  scene_.follow(change);
+}
+
 void Viewer::resetCamera() {
   cameraSetting_ = state_.settings.image.camera;
   camera_.reset(resolveCamera(sceneData_, frameSettings()), sceneData_.bounds.diagonal());
@@ -326,7 +349,7 @@ std::string Viewer::frameKey() const {
   key << c.position.x << ',' << c.position.y << ',' << c.position.z << ';' << c.yfov;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) key << ',' << c.orientation[i][j];
-  key << ";lights " << scene_.lightsVersion();
+  key << ";lights " << scene_.lightsVersion() << ";geometry " << scene_.geometryVersion();
   return key.str();
 }
 
@@ -350,7 +373,8 @@ void Viewer::display() {
   options.encoding = displayEncodingOf(state_.view);
   options.exposureEV = state_.settings.image.exposure;
   options.toneMap = parseToneMap(state_.settings.image.toneMap);
-  options.largestCount = lastFrame_.lights.maxRasterized;
+  // Overdraw over the frame's largest count; history over 64 frames (a pixel at 64 has converged for display).
+  options.largestCount = state_.view == Aov::History ? 64u : lastFrame_.lights.maxRasterized;
   displayPass_.execute(renderer_.texture(state_.view), options, displayImage_);
   if (state_.pointsLevel > 0 && s.indirectMethod == IndirectMethod::Lgh && !s.lightPass.bruteForce)
     gridPointsPass_.execute({renderer_.hierarchy(), frameView_, renderer_.gbuffer().position}, state_.pointsLevel,

@@ -29,7 +29,8 @@ struct ViewerOptions {
 class Viewer {
  public:
   // The context must be the window backend's and current; it must outlive the viewer.
-  Viewer(const Scene& scene, gl::Context& context, const ViewerState& initial, const ViewerOptions& options);
+  // An animated scene is posed (poseScene) at the panel's time: `scene` is the one the viewer moves.
+  Viewer(Scene& scene, gl::Context& context, const ViewerState& initial, const ViewerOptions& options);
   ~Viewer();
   Viewer(const Viewer&) = delete;
   Viewer& operator=(const Viewer&) = delete;
@@ -49,6 +50,8 @@ class Viewer {
   bool runCommand(const ScriptCommand& c);  // false: quit
   void handleInput(PanelRequests& requests);
   void applyLightChanges(const std::vector<size_t>& changed);
+  // The animation at state_.time (advanced by `dt` while playing, looping): moved meshes and lights follow.
+  void playAnimation(double dt);
   void resetCamera();
   RenderSettings frameSettings() const;  // the settings a frame renders with (size, overdraw)
   std::string frameKey() const;          // what a rendered frame depends on, to detect changes
@@ -59,7 +62,7 @@ class Viewer {
   void captureWindow(const std::filesystem::path& path);  // the back buffer, before it is shown
   std::filesystem::path nextScreenshotPath(const char* extension) const;
 
-  const Scene& sceneData_;
+  Scene& sceneData_;
   gl::Context& context_;
   GLFWwindow* window_;
   ViewerOptions options_;
@@ -82,6 +85,7 @@ class Viewer {
   bool showPanel_ = true;
   bool scripted_ = false;
   double lastTime_ = 0;
+  double lastAnimationTime_ = 0;
   glm::dvec2 lastCursor_{0.0};
   double scrollSteps_ = 0;
   std::vector<int> keysPressed_;

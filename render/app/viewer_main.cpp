@@ -77,6 +77,8 @@ int run(int argc, char** argv) {
   for (const std::string& w : scene.warnings) std::cerr << "lgh-viewer: warning: " << w << "\n";
   if (!lgh::sceneHasLight(scene)) std::cerr << "lgh-viewer: note: " << lgh::noLightHint() << "\n";
   lgh::resolveCamera(scene, state.settings);  // an unknown --camera fails here, listing the cameras
+  state.time = scene.animation.start;
+  lgh::poseScene(scene, state.time);
   for (const lgh::ScriptCommand& c : commands)
     if (c.kind == lgh::ScriptCommand::Kind::Light && size_t(c.number) >= scene.lights.size())
       throw std::invalid_argument("script: '" + c.text + "': " + scenePath.filename().string() + " has " +

@@ -307,6 +307,16 @@ void drawTimingsWindow(const TimingHistory& timings, float em) {
   ImGui::End();
 }
 
+// The scene's animation: play (looping in real time), pause, and the time, which scrubs it.
+void drawAnimationSection(ViewerState& state, const SceneAnimation& animation) {
+  ImGui::Checkbox("play", &state.playing);
+  ImGui::SameLine();
+  ImGui::TextDisabled("(%zu channels, %.2f-%.2f s)", animation.channels.size(), animation.start, animation.end);
+  double start = animation.start, end = std::max(animation.end, animation.start + 1e-3);
+  if (ImGui::SliderScalar("time (s)", ImGuiDataType_Double, &state.time, &start, &end, "%.3f")) state.playing = false;
+  ImGui::TextDisabled("the history stays where the lighting did not change (view: history)");
+}
+
 }  // namespace
 
 PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
@@ -323,6 +333,8 @@ PanelRequests drawPanel(ViewerState& state, const PanelInfo& info) {
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) drawViewSection(state, info, requests);
     if (ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) drawCameraSection(state, requests);
     if (ImGui::CollapsingHeader("GPU memory by owner", ImGuiTreeNodeFlags_DefaultOpen)) drawMemorySection();
+    if (!info.scene->animation.empty() && ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen))
+      drawAnimationSection(state, info.scene->animation);
     if (ImGui::CollapsingHeader("Lights", ImGuiTreeNodeFlags_DefaultOpen))
       drawLightsSection(state, *info.scene, requests);
     bool settingsChanged = false;

@@ -24,6 +24,8 @@ struct ViewerState {
   bool fly = false;                   // camera: fly (look around in place) rather than orbit
   std::vector<PunctualLight> lights;  // the scene's punctual lights as edited
   int selectedLight = 0;
+  double time = 0.0;     // seconds into the scene's animation (when it has one)
+  bool playing = false;  // the animation advances in real time (looping)
 };
 
 // What the panel asks the viewer to do this frame.

@@ -1,5 +1,6 @@
 #include "render/app/viewer_script.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <sstream>
@@ -81,6 +82,9 @@ std::vector<ScriptCommand> parseScript(const std::string& script) {
           throw fail("expects light=I position=X,Y,Z (or direction=X,Y,Z or intensity=R,G,B)");
         if (!parseVector(vector, c.vector)) throw fail("'" + vector + "' is not three comma-separated numbers");
         if (c.name == "direction" && glm::length(c.vector) == 0.0f) throw fail("a direction must not be zero");
+      } else if (key == "time") {
+        c.kind = ScriptCommand::Kind::Time;
+        if (!parseNumber(value, c.seconds) || !std::isfinite(c.seconds)) throw fail("expects time=T in seconds");
       } else if (key == "screenshot") {
         c.kind = ScriptCommand::Kind::Screenshot;
         c.name = value;
@@ -103,7 +107,7 @@ std::vector<ScriptCommand> parseScript(const std::string& script) {
         c.kind = ScriptCommand::Kind::Quit;
       } else {
         throw fail(
-            "unknown command (frames=N, set NAME=VALUE, view=AOV, points=L, light=I position=X,Y,Z, "
+            "unknown command (frames=N, set NAME=VALUE, view=AOV, points=L, light=I position=X,Y,Z, time=T, "
             "screenshot=FILE, window-screenshot=FILE, window=WxH, quit)");
       }
       if (c.kind != ScriptCommand::Kind::Set && c.kind != ScriptCommand::Kind::Light && !rest.empty())

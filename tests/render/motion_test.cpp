@@ -137,6 +137,40 @@ TEST_F(MotionTest, SunStepOfATenthOfADegreeMovesMostVplsALittle) {
   EXPECT_LT(redrawn, 0.5);
 }
 
+// A light moved a centimetre after 8 still frames (the viewer's panel does this): the history AOV shows the
+// pixels that kept their frames (9 now) and those that started anew; most keep them, because the lighting
+// at most surfaces barely changed. With accumulate-motion restart, none does.
+TEST_F(MotionTest, SmallLightMoveKeepsMostPixelsHistoryShownAsTheHistoryAov) {
+  for (HistoryMotion motion : {HistoryMotion::Gradient, HistoryMotion::Restart}) {
+    Scene scene = loadScene(sourceDir() / "data" / "cornell_box.gltf");
+    SceneGpu gpu(scene);
+    settings.accumulation.motion = motion;
+    Renderer renderer(gpu, settings);
+    for (int f = 0; f < 8; ++f) renderer.render(view(scene));
+    PunctualLight moved = gpu.lights()[0];
+    moved.position.x += 0.01f;
+    gpu.setPunctualLight(0, moved);
+    renderer.render(view(scene));
+    const std::vector<glm::vec4> history = renderer.texture(Aov::History).readRGBA();
+    const std::vector<glm::vec4> position = renderer.gbuffer().position.readRGBA();
+    size_t valid = 0, kept = 0;
+    for (size_t i = 0; i < history.size(); ++i) {
+      if (position[i].w <= 0) continue;
+      ++valid;
+      kept += history[i].a > 8.5f ? 1 : 0;
+    }
+    const double share = double(kept) / double(std::max<size_t>(valid, 1));
+    std::printf("history after a 1 cm light move (%s): %.1f%% of the pixels kept their 8 frames\n",
+                motion == HistoryMotion::Gradient ? "gradient" : "restart", 100.0 * share);
+    if (motion == HistoryMotion::Gradient)
+      EXPECT_GT(share, 0.8);
+    else
+      EXPECT_EQ(kept, 0u);
+    const ImageRGBA shown = renderer.readImage(Aov::History);  // a heat map over the longest history
+    EXPECT_GT(meanLuminance(shown), 0.0);
+  }
+}
+
 // The relative RMSE of the renderer's last shadowed indirect irradiance against the exact one of its frame
 // (every VPL of its S0 at every pixel, with a shadow ray each).
 double shadowedError(const Renderer& renderer, const SceneGpu& gpu) {

@@ -169,6 +169,31 @@ TEST_F(ViewerTest, SunFromTheCommandLineIsAnEditableLightAndMatchesLghRender) {
   EXPECT_GT(compare(sun, turned).mean, 2.0 / 255.0) << "turning the sun changed nothing";
 }
 
+// The viewer plays the scene's animation: scripted to time=1 it shows what lgh-render --time 1 renders (the
+// lamp and the panel of data/cornell_moving_light.gltf moved there, the BVH and the VPLs with them), and its
+// history view shows the frames each pixel holds.
+TEST_F(ViewerTest, AnimationTimeMatchesLghRenderAtThatTime) {
+  LGH_REQUIRE_VIEWER();
+  const std::string scene = shellQuoted(sourceDir() / "data" / "cornell_moving_light.gltf");
+  const std::string common = scene + " --width 160 --height 90 --vpls 2000 --shadow-samples 0 -q";
+  const std::string script = "time=1;frames=1;screenshot=" + (dir / "at1.png").string() +
+                             ";time=0;frames=1;screenshot=" + (dir / "at0.png").string() +
+                             ";view=history;frames=2;screenshot=" + (dir / "history.png").string() + ";quit";
+  const RunResult viewer =
+      runShell(underXvfb(dir, std::string(kViewer) + " " + common + " --script " + shellQuoted(script)));
+  ASSERT_EQ(viewer.exitCode, 0) << viewer.output;
+  ASSERT_EQ(runShell(std::string(LGH_RENDER_EXE) + " " + common + " --time 1 -o " + shellQuoted(dir / "render1.png"))
+                .exitCode,
+            0);
+  const Image at1 = readImage(dir / "at1.png"), at0 = readImage(dir / "at0.png");
+  const Difference same = compare(at1, readImage(dir / "render1.png"));
+  std::cout << "[ viewer   ] time=1 against lgh-render --time 1: largest |difference| " << same.largest * 255
+            << "/255\n";
+  EXPECT_LE(same.largest, 1.0 / 255.0 + 1e-6);
+  EXPECT_GT(compare(at1, at0).mean, 1.0 / 255.0) << "the animation moved nothing";
+  EXPECT_GT(compare(readImage(dir / "history.png"), at0).mean, 1.0 / 255.0) << "the history view shows the image";
+}
+
 TEST_F(ViewerTest, WithoutDisplaySaysWhatToDo) {
   LGH_REQUIRE_VIEWER();
   const RunResult r = runShell("env -u DISPLAY -u WAYLAND_DISPLAY " + std::string(kViewer));
