@@ -103,9 +103,11 @@ ivec2 historyPixel(Surface s, ivec2 size) {
 //    this frame's around the pixel, r_t = sum w T r / sum w T over the 5 x 5 pixels on the same surface
 //    (w: normal and tangent plane as the history's own test), z = |r_t - R| / sqrt(var r_t + var R) with
 //    var r_t = sum (w T)^2 / (sum w T)^2 / (4k) (k Bernoulli samples a pixel at their widest), kept whole
-//    to z = 2 and dropped from z = 4 on. A pixel's k samples alone tell a lagging history only when its
-//    shadow flips; the window's 25 k tell a drift of a tenth (measured on the moving lamp: the pixel's own
-//    test kept 99% of a history that doubled the error);
+//    to z = 1.5 and dropped from z = 3 on. A pixel's k samples alone tell a lagging history only when its
+//    shadow flips; the window's 25 k tell a drift of a tenth. The thresholds trade ghosts for flicker
+//    (measured, MotionTest.JumpingOccluder… and the moving lamp's temporal error: z 2 to 4 left 1.44x the
+//    fresh frame's error after a jump at 0.56x the flicker of no history; 1.5 to 3, 1.12x at 0.58x; 1 to 2,
+//    0.98x at 0.62x);
 //  - unshadowed (the lightcuts' shadowed estimate, one noisy value): y from the same z test of the frame's
 //    luminance l_t against the history's mean and spread, x = y (a history of one frame, which has no
 //    spread, kept below a gradient of 1/2; the LGH's unshadowed irradiance, whole, none).
@@ -126,7 +128,7 @@ vec2 historyKept(ivec2 pixel, Surface s, vec4 irradianceSum, vec4 ratioSum, floa
     float mean = ratioSum.g / n;
     float spread = max(ratioSum.b / n - mean * mean, 0.0) * (1.0 + 1.0 / n);
     float z = abs(l - mean) / sqrt(max(spread, 1e-30 * mean * mean + 1e-37));
-    return vec2(clamp(2.0 - 0.5 * z, 0.0, 1.0));
+    return vec2(clamp((3.0 - z) / 1.5, 0.0, 1.0));
   }
   vec2 kept = vec2(irradianceKept, 1.0);
   if (ratioSum.g <= 0.0) return kept;
@@ -152,7 +154,7 @@ vec2 historyKept(ivec2 pixel, Surface s, vec4 irradianceSum, vec4 ratioSum, floa
   float variance = squares / (weights * weights) * 0.25 / float(accum.shadowSamples) +
                    ratioSum.b / (ratioSum.g * ratioSum.g);
   float z = abs(weighted / weights - history) / sqrt(max(variance, 1e-30));
-  kept.y = clamp(2.0 - 0.5 * z, 0.0, 1.0);
+  kept.y = clamp((3.0 - z) / 1.5, 0.0, 1.0);
   return kept;
 }
 
