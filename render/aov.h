@@ -15,8 +15,8 @@ namespace lgh {
 //               with the lightcuts their shadowed irradiance, accumulated and filtered
 //   ratio       unfiltered visibility ratio of the indirect light (mean of the k shadow rays, accumulated)
 //   visibility  the filtered ratio that multiplies the indirect light
-//   history     frames in each pixel's accumulated history (heat map; black without accumulation, and with the
-//               lightcuts' shadowed denoiser): where a moved light or mesh kept it and where it started anew
+//   history     frames in each pixel's accumulated history (heat map; black without accumulation): where a
+//               moved light or mesh kept it and where it started anew
 enum class Aov {
   Final,
   Direct,

@@ -281,8 +281,8 @@ const gl::Texture2D* Renderer::target(Aov aov) const {
       return &gbuffer_.normal;
     case Aov::Position:
       return &gbuffer_.position;
-    case Aov::History:  // the accumulated ratio's alpha: its frames
-      return accumulating() && method_ ? method_->target(Aov::Ratio) : nullptr;
+    case Aov::History:  // the frames in the accumulated history, in the alpha of the method's target
+      return accumulating() && method_ ? method_->target(aov) : nullptr;
     case Aov::Irradiance:  // the method's: with the lightcuts shadowed, and filtered as the composite uses it
     case Aov::Ratio:
     case Aov::Visibility:

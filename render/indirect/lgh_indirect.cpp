@@ -213,6 +213,7 @@ const gl::Texture2D* LghIndirect::target(Aov aov) const {
     case Aov::Irradiance:
       return &irradiance_;
     case Aov::Ratio:
+    case Aov::History:  // the accumulated ratio's alpha holds its frames
       return &rawRatio_;
     case Aov::Visibility:
       return &visibility_;

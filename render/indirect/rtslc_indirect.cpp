@@ -120,6 +120,8 @@ const gl::Texture2D* RtslcIndirect::target(Aov aov) const {
       return ratioForm() ? &ratio_ : nullptr;
     case Aov::Visibility:
       return ratioForm() ? &visibility_ : nullptr;
+    case Aov::History:  // the frames in alpha: the ratio's in ratio form, the moments' otherwise
+      return ratioForm() ? &ratio_ : &moments_;
     default:
       return nullptr;
   }

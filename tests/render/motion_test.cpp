@@ -169,6 +169,15 @@ TEST_F(MotionTest, SmallLightMoveKeepsMostPixelsHistoryShownAsTheHistoryAov) {
     const ImageRGBA shown = renderer.readImage(Aov::History);  // a heat map over the longest history
     EXPECT_GT(meanLuminance(shown), 0.0);
   }
+  // The lightcuts' history shows too (their moments' alpha): 2 frames after 2 still ones.
+  Scene scene = loadScene(sourceDir() / "data" / "cornell_box.gltf");
+  const SceneGpu gpu(scene);
+  settings.indirectMethod = IndirectMethod::Rtslc;
+  Renderer lightcuts(gpu, settings);
+  for (int f = 0; f < 2; ++f) lightcuts.render(view(scene));
+  float longest = 0.0f;
+  for (const glm::vec4& p : lightcuts.texture(Aov::History).readRGBA()) longest = std::max(longest, p.a);
+  EXPECT_EQ(longest, 2.0f);
 }
 
 // The relative RMSE of the renderer's last shadowed indirect irradiance against the exact one of its frame
