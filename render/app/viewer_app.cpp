@@ -320,6 +320,9 @@ void Viewer::playAnimation(double dt) {
     if (state_.time > animation.end)
       state_.time = length > 0 ? animation.start + std::fmod(state_.time - animation.start, length) : animation.start;
   }
+  // Posed once per time: the panel's loop runs this every event, mostly with nothing to move.
+  if (state_.time == posedTime_) return;
+  posedTime_ = state_.time;
   PoseChange change = poseScene(sceneData_, state_.time);
   change.cameras = false;  // the viewer's camera is the user's
   for (size_t i : change.lights) state_.lights[i] = sceneData_.lights[i];

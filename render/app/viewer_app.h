@@ -6,6 +6,7 @@
 // stay responsive. Exposure, tone curve, view and overlays only redo the cheap display pass.
 
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -86,6 +87,7 @@ class Viewer {
   bool scripted_ = false;
   double lastTime_ = 0;
   double lastAnimationTime_ = 0;
+  double posedTime_ = std::numeric_limits<double>::quiet_NaN();  // state_.time the scene was last posed at
   glm::dvec2 lastCursor_{0.0};
   double scrollSteps_ = 0;
   std::vector<int> keysPressed_;

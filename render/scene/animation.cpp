@@ -175,8 +175,8 @@ PoseChange poseScene(Scene& scene, double time) {
     }
   }
   for (size_t i = 0; i < scene.lights.size() && i < animation.lightNodes.size(); ++i) {
+    if (!animation.carriesLight(i)) continue;
     const int node = animation.lightNodes[i];
-    if (node < 0 || !animation.nodes[size_t(node)].moves) continue;
     PunctualLight& light = scene.lights[i];
     const glm::vec3 position = light.position, direction = light.direction;
     if (lightPlacement(world[size_t(node)], scene.origin, light.position, light.direction) &&
@@ -185,7 +185,7 @@ PoseChange poseScene(Scene& scene, double time) {
   }
   for (size_t i = 0; i < scene.cameras.size() && i < animation.cameraNodes.size(); ++i) {
     const int node = animation.cameraNodes[i];
-    if (node < 0 || !animation.nodes[size_t(node)].moves) continue;
+    if (!animation.moves(node)) continue;
     Camera& camera = scene.cameras[i];
     const glm::vec3 position = camera.position;
     const glm::mat3 orientation = camera.orientation;

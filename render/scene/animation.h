@@ -65,6 +65,10 @@ struct SceneAnimation {
   std::vector<int> lightNodes, cameraNodes;  // the node of Scene::lights[i] and of Scene::cameras[i]
 
   bool empty() const { return channels.empty(); }
+  // Node `node` (a file's node index; -1: none) or one of its ancestors is animated.
+  bool moves(int node) const { return node >= 0 && size_t(node) < nodes.size() && nodes[size_t(node)].moves; }
+  // Scene::lights[i] rides a moving node (lights added after loading ride none).
+  bool carriesLight(size_t i) const { return i < lightNodes.size() && moves(lightNodes[i]); }
   // Every node's world transform at `time` (rest transforms with the channels' values in place).
   std::vector<glm::dmat4> worldTransforms(double time) const;
 };

@@ -269,7 +269,7 @@ class GltfLoader {
                " is not finite (NaN or Inf) after the node transform, or beyond float range");
     }
 
-    const bool moves = !scene_.animation.empty() && scene_.animation.nodes[size_t(nodeIndex)].moves;
+    const bool moves = scene_.animation.moves(nodeIndex);
     std::vector<std::uint32_t> emittedFrom;
     MovingPrimitive moving;
     moving.node = nodeIndex;

@@ -31,10 +31,7 @@ PoseChange applyScriptedMotion(const ScriptedMotion& motion, int frame, const st
   const SceneAnimation& animation = scene.animation;
   for (size_t i = 0; i < start.size() && i < scene.lights.size(); ++i) {
     // A light the scene's own animation carries is left to it.
-    if (i < animation.lightNodes.size() && animation.lightNodes[i] >= 0 &&
-        animation.nodes.size() > size_t(animation.lightNodes[i]) &&
-        animation.nodes[size_t(animation.lightNodes[i])].moves)
-      continue;
+    if (animation.carriesLight(i)) continue;
     PunctualLight light = start[i];
     if (light.type == LightType::Directional && motion.sunStep != glm::vec2(0.0f)) {
       const glm::vec2 angles = sunAngles(-light.direction) + steps * motion.sunStep;
