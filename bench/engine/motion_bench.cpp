@@ -11,6 +11,7 @@
 
 #include "bench/common/ranks.h"
 #include "bench/common/table.h"
+#include "bench/engine/motion_error.h"
 #include "bench/reference/reference.h"
 #include "bench/sweep/sweep_reference.h"
 #include "bench/sweep/sweep_stats.h"
@@ -55,19 +56,28 @@ std::vector<Configuration> configurations(const MotionBenchOptions& options) {
   return list;
 }
 
-// The shadowed indirect irradiance's luminance at the reference's pixels (the lightcuts' is shadowed already:
-// their visibility reads 1).
-std::vector<double> shadowedAtPixels(const Renderer& renderer, const reference::ReferenceImage& ref) {
+// A frame's estimate at the reference's pixels: the unshadowed irradiance's luminance I and the visibility
+// V the image multiplies it by (the lightcuts' irradiance is shadowed already: their visibility reads 1).
+struct PixelValues {
+  std::vector<double> irradiance, visibility;
+  double shadowed(size_t k) const { return irradiance[k] * visibility[k]; }
+};
+
+PixelValues valuesAtPixels(const Renderer& renderer, const reference::ReferenceImage& ref) {
   const ImageRGBA irradiance = renderer.readImage(Aov::Irradiance), visibility = renderer.readImage(Aov::Visibility);
-  std::vector<double> values(ref.pixels.size());
-  for (size_t k = 0; k < ref.pixels.size(); ++k)
-    values[k] = luminance(irradiance.pixels[ref.pixels[k]]) * double(visibility.pixels[ref.pixels[k]].r);
+  PixelValues values;
+  for (const std::uint32_t p : ref.pixels) {
+    values.irradiance.push_back(luminance(irradiance.pixels[p]));
+    values.visibility.push_back(double(visibility.pixels[p].r));
+  }
   return values;
 }
 
 struct Series {
   std::vector<double> error, temporal, ms;
-  std::vector<double> last;  // the previous frame's values at the reference's pixels
+  std::vector<double> irradianceTemporal, visibilityTemporal;  // the temporal error's two parts
+  std::vector<double> last;                                    // the previous frame's values at the reference's pixels
+  ErrorParts lastParts;
 };
 
 double rms(const std::vector<double>& v, size_t from = 0) {
@@ -164,12 +174,12 @@ int runMotionBench(const MotionBenchOptions& options) {
     if (!folder.empty()) std::filesystem::create_directories(folder);
     csv.open(options.csvPath);
     if (!csv) throw std::runtime_error(options.csvPath + ": cannot write");
-    csv << "frame,time,configuration,error,temporal_error,ms,bvh_build_ms,reference_pixels\n";
+    csv << "frame,time,configuration,error,temporal_error,ms,bvh_build_ms,reference_pixels,"
+           "temporal_irradiance_part,temporal_visibility_part\n";
   }
   if (!options.imageDir.empty()) std::filesystem::create_directories(options.imageDir);
 
   const std::vector<PunctualLight> startLights = scene.lights;
-  std::vector<double> lastReference;
   std::unique_ptr<reference::OcclusionScene> occlusion;
   for (int f = 0; f < options.frames; ++f) {
     const double time = start + double(f) / options.fps;
@@ -202,34 +212,46 @@ int runMotionBench(const MotionBenchOptions& options) {
     request.run.label = "reference frame " + std::to_string(f);
     const reference::ReferenceImage ref = obtainReference(ranks, *occlusion, spec, configs[0].settings,
                                                           referenceInput(first, fromGpuLights(lights)), request, info);
-    std::vector<double> reference(ref.pixels.size());
+    std::vector<double> reference(ref.pixels.size()), unshadowed(ref.pixels.size());
     double norm = 0;
     for (size_t k = 0; k < ref.pixels.size(); ++k) {
       reference[k] = luminance(ref.shadowed[k]);
+      unshadowed[k] = luminance(ref.unshadowed[k]);
       norm += reference[k] * reference[k];
     }
     norm = std::max(norm, 1e-300);
+    // RMS of a frame-to-frame change over the pixels, relative to the reference's RMS.
+    const auto temporal = [&](const std::vector<double>& now, const std::vector<double>& before) {
+      double squared = 0;
+      for (size_t k = 0; k < now.size(); ++k) squared += (now[k] - before[k]) * (now[k] - before[k]);
+      return std::sqrt(squared / norm);
+    };
     for (size_t c = 0; c < configs.size(); ++c) {
-      const std::vector<double> values = shadowedAtPixels(*renderers[c], ref);
-      double squared = 0, changeSquared = 0;
-      for (size_t k = 0; k < values.size(); ++k) {
-        squared += (values[k] - reference[k]) * (values[k] - reference[k]);
-        if (f > 0) {
-          const double d = (values[k] - series[c].last[k]) - (reference[k] - lastReference[k]);
-          changeSquared += d * d;
-        }
+      const PixelValues values = valuesAtPixels(*renderers[c], ref);
+      std::vector<double> error(values.irradiance.size());
+      double squared = 0;
+      for (size_t k = 0; k < error.size(); ++k) {
+        error[k] = values.shadowed(k) - reference[k];
+        squared += error[k] * error[k];
       }
+      const ErrorParts parts = errorParts(values.irradiance, values.visibility, unshadowed, reference);
       Series& s = series[c];
       s.error.push_back(std::sqrt(squared / norm));
-      if (f > 0) s.temporal.push_back(std::sqrt(changeSquared / norm));
+      if (f > 0) {
+        s.temporal.push_back(temporal(error, s.last));
+        s.irradianceTemporal.push_back(temporal(parts.irradiance, s.lastParts.irradiance));
+        s.visibilityTemporal.push_back(temporal(parts.visibility, s.lastParts.visibility));
+      }
       s.ms.push_back(stats[c].totalMs() - stats[c].passMs(passes::kBvhBuild));
-      s.last = values;
+      s.last = error;
+      s.lastParts = parts;
       if (csv)
         csv << f << ',' << time << ",\"" << configs[c].name << "\"," << s.error.back() << ','
             << (f > 0 ? std::to_string(s.temporal.back()) : "") << ',' << s.ms.back() << ','
-            << stats[c].passMs(passes::kBvhBuild) << ',' << ref.pixels.size() << '\n';
+            << stats[c].passMs(passes::kBvhBuild) << ',' << ref.pixels.size() << ','
+            << (f > 0 ? std::to_string(s.irradianceTemporal.back()) : "") << ','
+            << (f > 0 ? std::to_string(s.visibilityTemporal.back()) : "") << '\n';
     }
-    lastReference = reference;
     if (!options.imageDir.empty() && ref.full()) {
       char name[32];
       std::snprintf(name, sizeof name, "frame_%04d.png", f);
@@ -243,7 +265,8 @@ int runMotionBench(const MotionBenchOptions& options) {
     std::fflush(stdout);
   }
 
-  TextTable table({"configuration", "mean error", "temporal error (RMS)", "temporal / no history", "ms a frame"});
+  TextTable table({"configuration", "mean error", "temporal error (RMS)", "temporal / no history", "irradiance's part",
+                   "visibility's part", "ms a frame"});
   for (size_t c = 0; c < configs.size(); ++c) {
     const Series& s = series[c];
     // Against the same method's first configuration, its no-history one.
@@ -251,10 +274,14 @@ int runMotionBench(const MotionBenchOptions& options) {
     while (configs[base].settings.indirectMethod != configs[c].settings.indirectMethod) ++base;
     char ratio[32];
     std::snprintf(ratio, sizeof ratio, "%.2f", rms(s.temporal) / rms(series[base].temporal));
-    char e[32], t[32];
+    char e[32], t[32], irradiance[32] = "-", visibility[32] = "-";
     std::snprintf(e, sizeof e, "%.4f", mean(s.error));
     std::snprintf(t, sizeof t, "%.4f", rms(s.temporal));
-    table.addRow({configs[c].name, e, t, ratio, formatMs(mean(s.ms, 1))});
+    if (configs[c].settings.indirectMethod == IndirectMethod::Lgh) {  // the lightcuts' irradiance is shadowed
+      std::snprintf(irradiance, sizeof irradiance, "%.4f", rms(s.irradianceTemporal));
+      std::snprintf(visibility, sizeof visibility, "%.4f", rms(s.visibilityTemporal));
+    }
+    table.addRow({configs[c].name, e, t, ratio, irradiance, visibility, formatMs(mean(s.ms, 1))});
   }
   std::printf("over the sequence (errors relative to the reference's RMS; frame 0's time left out):\n");
   table.print(stdout);

@@ -17,6 +17,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "bench/engine/motion_error.h"
 #include "bench/reference/reference_tiles.h"
 #include "gl_test_env.h"
 #include "gltf_writer.h"
@@ -379,6 +380,20 @@ TEST(ReferenceCache, RoundTripAndKeying) {
   EXPECT_EQ(reference::hashLights(lights), h);
   lights[0].intensity.x += 1e-3f;
   EXPECT_NE(reference::hashLights(lights), h);
+}
+
+// lgh-bench motion's split of a frame's error into the irradiance's and the visibility's parts: they add up
+// to the error I V - R at every pixel, and each vanishes where its own factor is the reference's.
+TEST(MotionErrorParts, AddUpToTheErrorAndVanishWhereTheirFactorIsExact) {
+  const std::vector<double> unshadowed = {2.0, 1.0, 0.0, 4.0}, shadowed = {1.0, 1.0, 0.0, 0.5};
+  const std::vector<double> irradiance = {2.5, 0.8, 0.3, 4.0}, visibility = {0.5, 0.7, 1.0, 0.25};
+  const bench::ErrorParts parts = bench::errorParts(irradiance, visibility, unshadowed, shadowed);
+  for (size_t k = 0; k < shadowed.size(); ++k)
+    EXPECT_NEAR(parts.irradiance[k] + parts.visibility[k], irradiance[k] * visibility[k] - shadowed[k], 1e-12) << k;
+  EXPECT_DOUBLE_EQ(parts.visibility[0], 0.0);  // V = V_ref = 1/2: the irradiance's alone
+  EXPECT_DOUBLE_EQ(parts.irradiance[0], 0.25);
+  EXPECT_DOUBLE_EQ(parts.irradiance[3], 0.0);  // I = R_u: the visibility's alone
+  EXPECT_DOUBLE_EQ(parts.visibility[3], 0.5);
 }
 
 }  // namespace
