@@ -36,7 +36,9 @@
 // Under motion (the lights or the geometry moved since the last frame; docs/design.md §6, "history under
 // motion"), the reprojected history is first tested (historyKept): kMotionGradient gives the irradiance's
 // sums way to this frame's and scales the whole history by what the pixel's temporal tests keep;
-// kMotionRatio replaces the irradiance's sums by this frame's and keeps the ratio's (the LGH paper's choice).
+// kMotionRatio replaces the irradiance's sums by this frame's and keeps the ratio's (the LGH paper's choice);
+// kMotionKeep keeps the history as it is (SVGF's temporal accumulation: an exponential moving average of
+// weight 1 / maxFrames once full, which lags a change by its length).
 // Stage 1 (interleaving, 2 <= N < n^2): the pixel's sum covers N of the n^2 tiles' lights, so its
 // irradiance is resolved from its neighbours' new sums, edge-aware as interleave_resolve.comp does, over
 // the interleaving window for N frames (shared/interleave_window.glsl: n x n for N < n, a column of n

@@ -95,9 +95,10 @@ struct ShadowFilterSettings {
 // before (pinned frames, benchmarks); the viewer turns it on, and lgh-render with --frames > 1.
 // What the history does in a frame in which the lights or the geometry moved (docs/design.md §6,
 // "history under motion"): restart it everywhere; keep the visibility ratio's and take this frame's
-// irradiance (the LGH paper's choice); or keep each pixel's as far as its temporal test finds the
-// lighting there unchanged. In kHistoryMotionChoices' order (= gpu::kMotion* - 1).
-enum class HistoryMotion { Restart, Ratio, Gradient };
+// irradiance (the LGH paper's choice); keep each pixel's as far as its temporal test finds the
+// lighting there unchanged; or keep it all, whatever changed, as SVGF's temporal accumulation does (the
+// lightcuts paper's choice; its length is maxFrames). In kHistoryMotionChoices' order (= gpu::kMotion* - 1).
+enum class HistoryMotion { Restart, Ratio, Gradient, Keep };
 
 struct AccumulationSettings {
   bool enabled = false;
@@ -195,7 +196,7 @@ inline constexpr const char* kShadowEstimatorChoices = "converging|paper|uniform
 inline constexpr const char* kToneMapChoices = "aces|reinhard|clamp";
 inline constexpr const char* kIndirectMethodChoices = "none|lgh|rtslc";
 inline constexpr const char* kRtslcDenoiserChoices = "shadowed|ratio";
-inline constexpr const char* kHistoryMotionChoices = "restart|ratio|gradient";
+inline constexpr const char* kHistoryMotionChoices = "restart|ratio|gradient|keep";
 
 // visit(value&, SettingInfo) for each setting, in the order users see them.
 template <typename Settings, typename Visitor>
@@ -335,7 +336,7 @@ void visitSettings(Settings& s, Visitor&& visit) {
             .keepingHistory());
   visit(
       accumulation.motion,
-      SettingInfo{"accumulate-motion", "history when lights or meshes move: restart, keep the ratio's, or test pixels"}
+      SettingInfo{"accumulate-motion", "history when lights or meshes move: restart, keep the ratio's, test, keep all"}
           .oneOf(kHistoryMotionChoices)
           .keepingHistory());
   visit(accumulation.motionTolerance,

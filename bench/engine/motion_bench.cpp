@@ -46,12 +46,13 @@ std::vector<Configuration> configurations(const MotionBenchOptions& options) {
       make("lgh, no history, VPLs redrawn", IndirectMethod::Lgh, false, HistoryMotion::Restart, true),
   };
   if (options.lightcutSamples > 0) {
-    for (bool history : {false, true}) {
-      Configuration c = make(history ? "lightcuts, tested history" : "lightcuts, no history", IndirectMethod::Rtslc,
-                             history, HistoryMotion::Gradient);
-      c.settings.rtslc.samples = options.lightcutSamples;
-      list.push_back(c);
-    }
+    list.push_back(make("lightcuts, no history", IndirectMethod::Rtslc, false, HistoryMotion::Restart));
+    list.push_back(make("lightcuts, tested history", IndirectMethod::Rtslc, true, HistoryMotion::Gradient));
+    // Their paper's: SVGF's temporal accumulation, alpha = 0.2 (Lin & Yuksel 2020, Fig. 9), the history
+    // kept whatever moved, as an exponential moving average of 5 frames.
+    list.push_back(make("lightcuts, SVGF history (paper)", IndirectMethod::Rtslc, true, HistoryMotion::Keep));
+    list.back().settings.accumulation.maxFrames = 5;
+    for (size_t c = list.size() - 3; c < list.size(); ++c) list[c].settings.rtslc.samples = options.lightcutSamples;
   }
   return list;
 }

@@ -13,6 +13,7 @@ GPU_CONST uint kAccumulateResolveIncomplete = 1u;  // stage 1: resolve of incomp
 GPU_CONST uint kMotionNone = 0u;      // nothing: the sums grow exactly
 GPU_CONST uint kMotionRatio = 2u;     // the irradiance's history replaced by this frame's, the ratio's kept
 GPU_CONST uint kMotionGradient = 3u;  // each pixel's history kept as far as its temporal tests allow
+GPU_CONST uint kMotionKeep = 4u;      // the history kept whatever changed (SVGF), its length maxFrames
 
 // A vec3 followed by a scalar, scalars in groups of four (see gpu_prelude.h).
 GPU_STRUCT(AccumulationUniforms) {

@@ -205,6 +205,28 @@ TEST_F(MotionTest, LightSwitchedOffTakesItsIndirectLightWithIt) {
   }
 }
 
+// accumulate-motion keep (SVGF's temporal accumulation, the lightcuts paper's): the history is kept whatever
+// changed, an exponential moving average of weight 1 / maxFrames. The lamp switched off after 8 still
+// frames with a history of 5: the irradiance is 4/5 of the still one the next frame and 16/25 the frame
+// after (whole irradiance, the same at every pixel's mean). The other modes drop it at once (above).
+TEST_F(MotionTest, KeepHoldsTheHistoryThroughMotionAsAMovingAverageOfMaxFrames) {
+  Scene scene = loadScene(sourceDir() / "data" / "cornell_box.gltf");
+  SceneGpu gpu(scene);
+  settings.accumulation.motion = HistoryMotion::Keep;
+  settings.accumulation.maxFrames = 5;
+  Renderer renderer(gpu, settings);
+  for (int f = 0; f < 8; ++f) renderer.render(view(scene));
+  const double still = meanLuminance(renderer.readImage(Aov::Irradiance));
+  ASSERT_GT(still, 0.0);
+  PunctualLight off = gpu.lights()[0];
+  off.intensity = glm::vec3(0.0f);
+  gpu.setPunctualLight(0, off);
+  renderer.render(view(scene));
+  EXPECT_NEAR(meanLuminance(renderer.readImage(Aov::Irradiance)) / still, 0.8, 1e-4);
+  renderer.render(view(scene));
+  EXPECT_NEAR(meanLuminance(renderer.readImage(Aov::Irradiance)) / still, 0.64, 1e-4);
+}
+
 // data/cornell_moving_light.gltf's panel slides and turns over the floor: 12 frames at 24 frames a second
 // from 0.4 s with the history kept where each pixel's tests allow (the default, kMotionGradient), the lamp
 // carried too or held where it starts. The shadowed error of the last frame against the exact irradiance of
