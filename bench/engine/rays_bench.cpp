@@ -88,7 +88,7 @@ struct Traced {
 
 // A GPU layout's BVH and its tracing programs (timed, and counting its work), made once for every set.
 struct GpuTracer {
-  GpuTracer(const Scene& scene, BvhLayout layout) : gpu(scene, layout) {}
+  GpuTracer(const Scene& scene, BvhLayout layout, BvhQuality quality) : gpu(scene, layout, quality) {}
   SceneGpu gpu;
   TracingProgram trace{"trace_occlusion.comp"}, counting{"trace_occlusion.comp", {{"LGH_BVH_COUNTERS", "1"}}};
 };
@@ -204,8 +204,13 @@ std::vector<Ray> cameraRays(const Scene& scene, const CameraView& view, int widt
 
 // Embree's scene and every GPU layout's tracer, made once for all the sets.
 struct Tracers {
-  explicit Tracers(const Scene& scene) : embree(scene.positions, scene.indices) {
-    for (BvhLayout layout : kBvhLayouts) gpu.push_back(std::make_unique<GpuTracer>(scene, layout));
+  Tracers(const Scene& scene, BvhQuality quality) : embree(scene.positions, scene.indices) {
+    std::printf("BVH builds (Embree's builder, %s quality):", choiceName(quality, kBvhQualityChoices).c_str());
+    for (BvhLayout layout : kBvhLayouts) {
+      gpu.push_back(std::make_unique<GpuTracer>(scene, layout, quality));
+      std::printf(" %s %.0f ms", choiceName(layout, kBvhLayoutChoices).c_str(), gpu.back()->gpu.bvhBuildMs());
+    }
+    std::printf("\n");
   }
   reference::OcclusionScene embree;
   std::vector<std::unique_ptr<GpuTracer>> gpu;  // by BvhLayout
@@ -270,6 +275,9 @@ CLI::App* addRaysCommand(CLI::App& app, RaysBenchOptions& options) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--ray-seed", options.seed, "random seed of the segments");
+  command->add_option("--bvh-quality", options.bvhQuality, "Embree's build quality of the GPU layouts: high|medium|low")
+      ->check(CLI::IsMember(choiceList(kBvhQualityChoices)))
+      ->capture_default_str();
   command->add_option("--max-differ", options.maxDiffering,
                       "share of a set's rays a GPU layout may answer otherwise than Embree before the exit code is 1");
   return command;
@@ -301,7 +309,7 @@ int runRaysBench(const RaysBenchOptions& options) {
   sets.push_back({"camera rays (any hit, one a pixel)",
                   cameraRays(scene, bench.renderer().view(), settings.image.width, settings.image.height)});
 
-  Tracers tracers(scene);
+  Tracers tracers(scene, choiceValue<BvhQuality>(options.bvhQuality, kBvhQualityChoices));
   bool differed = false;
   for (const Set& set : sets) {
     const size_t differ =

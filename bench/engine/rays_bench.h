@@ -27,6 +27,7 @@ struct RaysBenchOptions {
   size_t rays = 1000000;  // random segments
   int repeats = 3;        // timed traces per tracer; the median is reported
   unsigned seed = 1;
+  std::string bvhQuality = "high";  // the GPU layouts' build (kBvhQualityChoices; a scene's load: high)
   // The exit code is 1 when a layout answers otherwise than Embree on more than this share of a set's rays
   // (edges: Embree is watertight, Moller-Trumbore is not; alpha-masked triangles: only the GPU tests them).
   double maxDiffering = 1e-3;

@@ -356,9 +356,11 @@ std::string embreeError(RTCDevice device) {
 
 }  // namespace
 
-Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices, BvhLayout layout) {
+Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices, BvhLayout layout,
+             BvhQuality quality) {
   Bvh bvh;
   bvh.layout = layout;
+  bvh.quality = quality;
   const size_t count = indices.size() / 3;
   if (count == 0) return bvh;
   if (count > size_t(std::numeric_limits<std::uint32_t>::max()) / 2)
@@ -380,7 +382,9 @@ Bvh buildBvh(const std::vector<glm::vec3>& positions, const std::vector<std::uin
   std::unique_ptr<RTCBVHTy, BvhDeleter> tree(rtcNewBVH(device.get()));
   BuildContext context{positions, indices, maxLeafSize(layout)};
   RTCBuildArguments args = rtcDefaultBuildArguments();
-  args.buildQuality = RTC_BUILD_QUALITY_HIGH;  // SAH with spatial splits
+  args.buildQuality = quality == BvhQuality::High     ? RTC_BUILD_QUALITY_HIGH  // SAH with spatial splits
+                      : quality == BvhQuality::Medium ? RTC_BUILD_QUALITY_MEDIUM
+                                                      : RTC_BUILD_QUALITY_LOW;
   args.maxBranchingFactor = maxWidth(layout);
   args.maxDepth = maxDepth(layout);
   args.sahBlockSize = 1;

@@ -77,9 +77,9 @@ void packTexels(const Scene& scene, std::vector<gpu::GpuTextureInfo>& infos, std
 
 }  // namespace
 
-void SceneGpu::buildBvh(BvhLayout layout) {
+void SceneGpu::buildBvh(BvhLayout layout, BvhQuality quality) {
   const auto start = std::chrono::steady_clock::now();
-  bvh_ = lgh::buildBvh(scene_.positions, scene_.indices, layout);
+  bvh_ = lgh::buildBvh(scene_.positions, scene_.indices, layout, quality);
   // Alpha-masked triangles are marked in the BVH so that traversal tests alpha only where it can matter.
   for (gpu::BvhTriangle& t : bvh_.triangles)
     if (scene_.materials[scene_.triangleMaterials[t.sceneTriangle]].alphaMode == AlphaMode::Mask)
@@ -88,9 +88,9 @@ void SceneGpu::buildBvh(BvhLayout layout) {
   bvhBuildMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-SceneGpu::SceneGpu(const Scene& scene, BvhLayout layout) : scene_(scene) {
+SceneGpu::SceneGpu(const Scene& scene, BvhLayout layout, BvhQuality quality) : scene_(scene) {
   gl::DebugGroup group("upload scene");
-  buildBvh(layout);
+  buildBvh(layout, quality);
   // An animated scene's vertices move (follow): their buffers take updates.
   const GLbitfield moving = scene.animation.primitives.empty() ? 0 : GL_DYNAMIC_STORAGE_BIT;
   positions_ = gl::Buffer::fromVector({passes::kScene, "vertex positions"}, scene.positions, moving);
@@ -178,7 +178,7 @@ void SceneGpu::follow(const PoseChange& change) {
   if (change.geometry) {
     positions_.update(scene_.positions);
     normals_.update(scene_.normals);
-    buildBvh(bvh_.layout);
+    buildBvh(bvh_.layout, kFollowBvhQuality);
     ++geometryVersion_;
   }
   gl::checkErrors("follow the animation");

@@ -18,10 +18,17 @@
 
 namespace lgh {
 
+// The BVH's quality when meshes move and it is built every frame: Medium builds Sponza's compressed 8-wide
+// BVH in 51 ms against High's 325, for 1.2x the nodes and 1.3x the triangle tests a shadow ray; Low
+// (Morton codes) took 73 ms for 1.6x the nodes (docs/measurements.md, "The BVH under motion").
+inline constexpr BvhQuality kFollowBvhQuality = BvhQuality::Medium;
+
 class SceneGpu {
  public:
   // The BVH in `layout`: what the tracing passes compile their traversal for (TracingProgram).
-  explicit SceneGpu(const Scene& scene, BvhLayout layout = BvhLayout::Compressed8);
+  // The BVH is built at `quality`; rebuilds when meshes move (follow) at kFollowBvhQuality.
+  explicit SceneGpu(const Scene& scene, BvhLayout layout = BvhLayout::Compressed8,
+                    BvhQuality quality = BvhQuality::High);
 
   // Binds the BVH (at its LGH_TEXTURE_BVH_* units), scene triangles, materials, textures and punctual
   // lights (at their LGH_BINDING_* slots) for compute shaders.
@@ -56,7 +63,7 @@ class SceneGpu {
   double bvhBuildMs() const { return bvhBuildMs_; }  // of the last build (at construction, or the last follow)
 
  private:
-  void buildBvh(BvhLayout layout);
+  void buildBvh(BvhLayout layout, BvhQuality quality);
   void uploadLight(size_t index, const PunctualLight& light);
 
   const Scene& scene_;

@@ -14,6 +14,7 @@
 #include <functional>
 #include <random>
 #include <thread>
+#include <tuple>
 
 #include "gl_test_env.h"
 #include "render/gl/buffer.h"
@@ -21,6 +22,7 @@
 #include "render/scene/gpu_bvh.h"
 #include "render/scene/scene.h"
 #include "render/scene/tracing_program.h"
+#include "render/settings.h"
 #include "shared/bindings.h"
 #include "shared/ray_triangle.h"
 #include "tests/test_types.h"
@@ -222,7 +224,14 @@ std::vector<Child> childrenOf(const Bvh& bvh, std::uint32_t node) {
   return out;
 }
 
-class BvhBuild : public ::testing::TestWithParam<BvhLayout> {};
+// Every layout at every build quality (High at a scene's load, kFollowBvhQuality when meshes move).
+class BvhBuild : public ::testing::TestWithParam<std::tuple<BvhLayout, BvhQuality>> {
+ protected:
+  static BvhLayout layout() { return std::get<0>(GetParam()); }
+  static Bvh build(const Mesh& mesh) {
+    return buildBvh(mesh.positions, mesh.indices, layout(), std::get<1>(GetParam()));
+  }
+};
 
 // Every scene triangle is in a leaf (more than once only where a spatial split cut it), the triangles a
 // leaf alone references lie in its box and in every box above it (what lets the traversal skip a box),
@@ -230,12 +239,12 @@ class BvhBuild : public ::testing::TestWithParam<BvhLayout> {};
 // its parent's grid and may pass its parent's by a step), and the depth fits the stack.
 TEST_P(BvhBuild, StructureInvariants) {
   const Mesh mesh = randomSoup(5000, 1);
-  const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam());
+  const Bvh bvh = build(mesh);
   const size_t triangleCount = mesh.indices.size() / 3;
   ASSERT_GE(bvh.triangles.size(), triangleCount);
   EXPECT_EQ(bvh.stats.triangleReferences, bvh.triangles.size());
   EXPECT_LT(bvh.stats.maxDepth, int(gpu::kBvhStackSize) - 1);
-  EXPECT_LE(bvh.stats.maxLeafSize, GetParam() == BvhLayout::Compressed8 ? gpu::kBvhCompressedMaxLeafSize : 8u);
+  EXPECT_LE(bvh.stats.maxLeafSize, layout() == BvhLayout::Compressed8 ? gpu::kBvhCompressedMaxLeafSize : 8u);
 
   std::vector<int> seen(triangleCount, 0);
   struct Leaf {
@@ -247,13 +256,13 @@ TEST_P(BvhBuild, StructureInvariants) {
   auto inside = [](const Child& box, const glm::vec3& p) {
     return glm::all(glm::greaterThanEqual(p, box.lower)) && glm::all(glm::lessThanEqual(p, box.upper));
   };
-  if (GetParam() == BvhLayout::Binary) {
+  if (layout() == BvhLayout::Binary) {
     ASSERT_EQ(bvh.nodes[0].triangleCount, 0u) << "a root leaf: too few triangles";
   }
   std::vector<Child> above;
   std::function<void(std::uint32_t)> visit = [&](std::uint32_t node) {
     for (const Child& child : childrenOf(bvh, node)) {
-      if (!above.empty() && GetParam() != BvhLayout::Compressed8) {
+      if (!above.empty() && layout() != BvhLayout::Compressed8) {
         ASSERT_TRUE(inside(above.back(), child.lower) && inside(above.back(), child.upper));
       }
       if (!child.leaf) {
@@ -289,21 +298,21 @@ TEST_P(BvhBuild, IdenticalTrianglesStayShallow) {
   Mesh mesh;
   mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   for (int i = 0; i < 10000; ++i) mesh.indices.insert(mesh.indices.end(), {0, 1, 2});
-  const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam());
+  const Bvh bvh = build(mesh);
   EXPECT_LT(bvh.stats.maxDepth, int(gpu::kBvhStackSize) - 1);
-  EXPECT_LE(bvh.stats.maxLeafSize, GetParam() == BvhLayout::Compressed8 ? gpu::kBvhCompressedMaxLeafSize : 8u);
+  EXPECT_LE(bvh.stats.maxLeafSize, layout() == BvhLayout::Compressed8 ? gpu::kBvhCompressedMaxLeafSize : 8u);
 }
 
 TEST_P(BvhBuild, EmptyAndSingle) {
-  const Bvh none = buildBvh({}, {}, GetParam());
+  const Bvh none = build({});
   EXPECT_TRUE(none.nodes.empty() && none.wideNodes.empty() && none.compressedNodes.empty());
-  const Bvh one = buildBvh({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}, GetParam());
+  const Bvh one = build({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}});
   ASSERT_EQ(one.triangles.size(), 1u);
-  if (GetParam() == BvhLayout::Binary) {
+  if (layout() == BvhLayout::Binary) {
     ASSERT_EQ(one.nodes.size(), 1u);
     EXPECT_EQ(one.nodes[0].triangleCount, 1u);
   } else {
-    ASSERT_EQ(GetParam() == BvhLayout::Wide4 ? one.wideNodes.size() : one.compressedNodes.size(), 1u);
+    ASSERT_EQ(layout() == BvhLayout::Wide4 ? one.wideNodes.size() : one.compressedNodes.size(), 1u);
     const std::vector<Child> children = childrenOf(one, 0);
     ASSERT_EQ(children.size(), 1u);
     EXPECT_TRUE(children[0].leaf);
@@ -316,7 +325,15 @@ auto layoutName = [](const ::testing::TestParamInfo<BvhLayout>& info) {
   const char* names[] = {"Binary", "Wide4", "Compressed8"};
   return std::string(names[size_t(info.param)]);
 };
-INSTANTIATE_TEST_SUITE_P(Layouts, BvhBuild, kLayouts, layoutName);
+auto layoutAndQualityName = [](const ::testing::TestParamInfo<std::tuple<BvhLayout, BvhQuality>>& info) {
+  const char* qualities[] = {"High", "Medium", "Low"};
+  return layoutName(::testing::TestParamInfo<BvhLayout>(std::get<0>(info.param), info.index)) +
+         qualities[size_t(std::get<1>(info.param))];
+};
+INSTANTIATE_TEST_SUITE_P(Layouts, BvhBuild,
+                         ::testing::Combine(kLayouts,
+                                            ::testing::Values(BvhQuality::High, BvhQuality::Medium, BvhQuality::Low)),
+                         layoutAndQualityName);
 
 class BvhTraceTest : public GLTest, public ::testing::WithParamInterface<BvhLayout> {};
 
@@ -328,6 +345,20 @@ TEST_P(BvhTraceTest, MatchesBruteForceOnTriangleSoup) {
   EXPECT_EQ(compareWithBruteForce(mesh, bvh, rays, &excused), 0u);
   EXPECT_LT(excused, rays.size() / 100) << "too many rays excused as edge cases";
   RecordProperty("excused", int(excused));
+}
+
+// The faster builds that follow moving meshes (kFollowBvhQuality, and Embree's fastest) answer as the
+// load's does.
+TEST_P(BvhTraceTest, MatchesBruteForceAtFasterBuildQualities) {
+  const Mesh mesh = randomSoup(3000, 7);
+  const auto rays = randomRays(glm::vec3(-1.2f), glm::vec3(1.2f), 4000, 11);
+  for (BvhQuality quality : {BvhQuality::Medium, BvhQuality::Low}) {
+    SCOPED_TRACE(choiceName(quality, kBvhQualityChoices));
+    const Bvh bvh = buildBvh(mesh.positions, mesh.indices, GetParam(), quality);
+    size_t excused = 0;
+    EXPECT_EQ(compareWithBruteForce(mesh, bvh, rays, &excused), 0u);
+    EXPECT_LT(excused, rays.size() / 100) << "too many rays excused as edge cases";
+  }
 }
 
 // The soup 1e6 from the origin (float spacing 0.06 there): boxes, slabs and triangles at that scale.
