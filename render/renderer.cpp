@@ -35,6 +35,16 @@ bool sameView(const CameraView& a, const CameraView& b) {
          a.cameraRelativeViewProjection == b.cameraRelativeViewProjection;
 }
 
+// Counts per pixel as a heat map scaled to the largest (at least 1), as the viewer shows them.
+std::vector<glm::vec4> heatMap(const std::vector<float>& counts) {
+  float largest = 1.0f;
+  for (float c : counts) largest = std::max(largest, c);
+  std::vector<glm::vec4> colors;
+  colors.reserve(counts.size());
+  for (float c : counts) colors.push_back(glm::vec4(gpu::heatColor(c / largest), 1.0f));
+  return colors;
+}
+
 }  // namespace
 
 double FrameStats::totalMs() const {
@@ -293,22 +303,14 @@ const gl::Texture2D* Renderer::target(Aov aov) const {
 }
 
 ImageRGBA Renderer::readImage(Aov aov) const {
-  if (aov == Aov::History) {
-    // Frames per pixel as a heat map over the frame's longest history (as the viewer shows it).
-    std::vector<glm::vec4> pixels = texture(aov).readRGBA();
-    float longest = 1.0f;
-    for (const glm::vec4& p : pixels) longest = std::max(longest, p.a);
-    for (glm::vec4& p : pixels) p = glm::vec4(gpu::heatColor(p.a / longest), 1.0f);
-    return fromGLRows(settings_.image.width, settings_.image.height, std::move(pixels));
-  }
-  if (aov == Aov::Overdraw) {
-    // Fragments per pixel as a heat map scaled to the frame's largest count (the paper's Fig. 5).
-    const std::vector<GLuint> counts = texture(aov).readUint();
-    const GLuint largest = std::max<GLuint>(1, *std::max_element(counts.begin(), counts.end()));
-    std::vector<glm::vec4> colors(counts.size());
-    for (size_t i = 0; i < counts.size(); ++i)
-      colors[i] = glm::vec4(gpu::heatColor(float(counts[i]) / float(largest)), 1.0f);
-    return fromGLRows(settings_.image.width, settings_.image.height, colors);
+  if (aov == Aov::History || aov == Aov::Overdraw) {
+    // The frames in each pixel's history (alpha), or its fragments (the paper's Fig. 5).
+    std::vector<float> counts;
+    if (aov == Aov::History)
+      for (const glm::vec4& p : texture(aov).readRGBA()) counts.push_back(p.a);
+    else
+      for (GLuint c : texture(aov).readUint()) counts.push_back(float(c));
+    return fromGLRows(settings_.image.width, settings_.image.height, heatMap(counts));
   }
   const gl::Texture2D& t = texture(aov);
   std::vector<glm::vec4> pixels = t.readRGBA();
