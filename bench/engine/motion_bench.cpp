@@ -57,19 +57,25 @@ std::vector<Configuration> configurations(const MotionBenchOptions& options) {
   return list;
 }
 
-// A frame's estimate at the reference's pixels: the unshadowed irradiance's luminance I and the visibility
-// V the image multiplies it by (the lightcuts' irradiance is shadowed already: their visibility reads 1).
+// A frame's estimate: the unshadowed irradiance and the visibility the image multiplies it by (the
+// lightcuts' irradiance is shadowed already: their visibility reads 1), read back once.
+struct FrameImages {
+  ImageRGBA irradiance, visibility;
+  explicit FrameImages(const Renderer& renderer)
+      : irradiance(renderer.readImage(Aov::Irradiance)), visibility(renderer.readImage(Aov::Visibility)) {}
+};
+
+// The estimate at the reference's pixels: the irradiance's luminance I and the visibility V.
 struct PixelValues {
   std::vector<double> irradiance, visibility;
   double shadowed(size_t k) const { return irradiance[k] * visibility[k]; }
 };
 
-PixelValues valuesAtPixels(const Renderer& renderer, const reference::ReferenceImage& ref) {
-  const ImageRGBA irradiance = renderer.readImage(Aov::Irradiance), visibility = renderer.readImage(Aov::Visibility);
+PixelValues valuesAtPixels(const FrameImages& images, const reference::ReferenceImage& ref) {
   PixelValues values;
   for (const std::uint32_t p : ref.pixels) {
-    values.irradiance.push_back(luminance(irradiance.pixels[p]));
-    values.visibility.push_back(double(visibility.pixels[p].r));
+    values.irradiance.push_back(luminance(images.irradiance.pixels[p]));
+    values.visibility.push_back(double(images.visibility.pixels[p].r));
   }
   return values;
 }
@@ -93,9 +99,8 @@ double mean(const std::vector<double>& v, size_t from = 0) {
 }
 
 // The reference's shadowed irradiance and the image's side by side, tone-mapped, for the animated figure.
-void writeSideBySide(const std::filesystem::path& file, const reference::ReferenceImage& ref, const Renderer& renderer,
+void writeSideBySide(const std::filesystem::path& file, const reference::ReferenceImage& ref, const FrameImages& images,
                      float exposure) {
-  const ImageRGBA irradiance = renderer.readImage(Aov::Irradiance), visibility = renderer.readImage(Aov::Visibility);
   ImageRGBA both;
   both.width = 2 * ref.width;
   both.height = ref.height;
@@ -104,7 +109,7 @@ void writeSideBySide(const std::filesystem::path& file, const reference::Referen
     const size_t x = ref.pixels[k] % size_t(ref.width), y = ref.pixels[k] / size_t(ref.width);
     both.pixels[y * size_t(both.width) + x] = glm::vec4(glm::vec3(ref.shadowed[k]), 1.0f);
     both.pixels[y * size_t(both.width) + size_t(ref.width) + x] =
-        glm::vec4(glm::vec3(irradiance.pixels[ref.pixels[k]]) * visibility.pixels[ref.pixels[k]].r, 1.0f);
+        glm::vec4(glm::vec3(images.irradiance.pixels[ref.pixels[k]]) * images.visibility.pixels[ref.pixels[k]].r, 1.0f);
   }
   writeImage(file, both, exposure, ToneMap::Aces);
 }
@@ -227,8 +232,10 @@ int runMotionBench(const MotionBenchOptions& options) {
       for (size_t k = 0; k < now.size(); ++k) squared += (now[k] - before[k]) * (now[k] - before[k]);
       return std::sqrt(squared / norm);
     };
+    constexpr size_t kShown = 2;  // the tested history's images go to --images
     for (size_t c = 0; c < configs.size(); ++c) {
-      const PixelValues values = valuesAtPixels(*renderers[c], ref);
+      const FrameImages images(*renderers[c]);
+      const PixelValues values = valuesAtPixels(images, ref);
       std::vector<double> error(values.irradiance.size());
       double squared = 0;
       for (size_t k = 0; k < error.size(); ++k) {
@@ -252,12 +259,12 @@ int runMotionBench(const MotionBenchOptions& options) {
             << stats[c].passMs(passes::kBvhBuild) << ',' << ref.pixels.size() << ','
             << (f > 0 ? std::to_string(s.irradianceTemporal.back()) : "") << ','
             << (f > 0 ? std::to_string(s.visibilityTemporal.back()) : "") << '\n';
-    }
-    if (!options.imageDir.empty() && ref.full()) {
-      char name[32];
-      std::snprintf(name, sizeof name, "frame_%04d.png", f);
-      writeSideBySide(std::filesystem::path(options.imageDir) / name, ref, *renderers[2],
-                      options.render.settings.image.exposure);
+      if (c == kShown && !options.imageDir.empty() && ref.full()) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%04d.png", f);
+        writeSideBySide(std::filesystem::path(options.imageDir) / name, ref, images,
+                        options.render.settings.image.exposure);
+      }
     }
     std::printf("  frame %3d  t %.3f s  reference %zu px (%s)  errors:", f, time, ref.pixels.size(),
                 info.cached ? "cached" : "computed");
