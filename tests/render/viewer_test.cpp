@@ -95,6 +95,10 @@ Difference compare(const Image& a, const Image& b) {
 class ViewerTest : public ::testing::Test {
  protected:
   TempDir dir;
+  // lgh-viewer with these arguments playing `script`, under Xvfb.
+  RunResult runViewerScript(const std::string& arguments, const std::string& script) const {
+    return runShell(underXvfb(dir, std::string(kViewer) + " " + arguments + " --script " + shellQuoted(script)));
+  }
 };
 
 TEST_F(ViewerTest, ScriptedScreenshotsMatchLghRender) {
@@ -105,8 +109,7 @@ TEST_F(ViewerTest, ScriptedScreenshotsMatchLghRender) {
   const std::string script = "frames=2;set alpha=2;frames=1;screenshot=" + (dir / "shadowed.png").string() +
                              ";set shadow-samples=0;frames=1;screenshot=" + (dir / "unshadowed.png").string() +
                              ";view=direct;screenshot=" + (dir / "direct.png").string() + ";quit";
-  const RunResult viewer =
-      runShell(underXvfb(dir, std::string(kViewer) + " " + common + " -q --script " + shellQuoted(script)));
+  const RunResult viewer = runViewerScript(common + " -q", script);
   ASSERT_EQ(viewer.exitCode, 0) << viewer.output;
 
   const std::string render = std::string(LGH_RENDER_EXE) + " " + common + " --alpha 2 -q ";
@@ -153,8 +156,7 @@ TEST_F(ViewerTest, SunFromTheCommandLineIsAnEditableLightAndMatchesLghRender) {
       "frames=1;screenshot=" + (dir / "sun.png").string() +
       ";light=0 direction=-0.4330127019,-0.8660254038,0.25;frames=1;screenshot=" + (dir / "turned.png").string() +
       ";quit";
-  const RunResult viewer =
-      runShell(underXvfb(dir, std::string(kViewer) + " " + common + " --sun 30,45 --script " + shellQuoted(script)));
+  const RunResult viewer = runViewerScript(common + " --sun 30,45", script);
   ASSERT_EQ(viewer.exitCode, 0) << viewer.output;
   const std::string render = std::string(LGH_RENDER_EXE) + " " + common;
   ASSERT_EQ(runShell(render + " --sun 30,45 -o " + shellQuoted(dir / "render_sun.png")).exitCode, 0);
@@ -179,8 +181,7 @@ TEST_F(ViewerTest, AnimationTimeMatchesLghRenderAtThatTime) {
   const std::string script = "time=1;frames=1;screenshot=" + (dir / "at1.png").string() +
                              ";time=0;frames=1;screenshot=" + (dir / "at0.png").string() +
                              ";view=history;frames=2;screenshot=" + (dir / "history.png").string() + ";quit";
-  const RunResult viewer =
-      runShell(underXvfb(dir, std::string(kViewer) + " " + common + " --script " + shellQuoted(script)));
+  const RunResult viewer = runViewerScript(common, script);
   ASSERT_EQ(viewer.exitCode, 0) << viewer.output;
   ASSERT_EQ(runShell(std::string(LGH_RENDER_EXE) + " " + common + " --time 1 -o " + shellQuoted(dir / "render1.png"))
                 .exitCode,
