@@ -30,48 +30,49 @@ float bvhEnterNode(uint index, vec3 origin, vec3 invDirection, float tMin, float
   return bvhEnterBox(boundsMin, boundsMax, origin, invDirection, tMin, tMax);
 }
 
-// Walks the BVH; with anyHit it stops at the first hit inside (tMin, tMax). The build keeps the depth
-// below kBvhStackSize, and only one node is pushed per level, so the stack cannot overflow.
-bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, out RayHit hit) {
-  hit = bvhNoHit(tMax);
-  if (textureSize(bvhNodeFloats) < kBvhNodeTexels) return false;  // no triangles (a stub buffer)
-  vec3 invDirection = bvhInverseDirection(direction);
+// The walk: the node to visit next (kBvhNoNode: the next one comes from bvhStack). The build keeps the
+// depth below kBvhStackSize, and only one node is pushed per level, so the stack cannot overflow.
+const uint kBvhNoNode = 0xffffffffu;
+struct BvhWalk {
+  uint stackSize;
+  uint node;
+};
 
-  uint stack[kBvhStackSize];
-  uint stackSize = 0u;
-  uint node = 0u;
-  if (isinf(bvhEnterNode(0u, origin, invDirection, tMin, tMax))) return false;
-  bool found = false;
+bool bvhWalkStart(out BvhWalk walk, vec3 origin, vec3 invDirection, float tMin, float tMax) {
+  if (textureSize(bvhNodeFloats) < kBvhNodeTexels) return false;  // no triangles (a stub buffer)
+  walk = BvhWalk(0u, 0u);
+  return !isinf(bvhEnterNode(0u, origin, invDirection, tMin, tMax));
+}
+
+bool bvhWalkToLeaf(inout BvhWalk walk, vec3 origin, vec3 invDirection, float tMin, float tMax, bool anyHit,
+                   out BvhLeafCursor leaf) {
   while (true) {
-    uvec2 links = bvhNodeLinks(node);  // (firstChildOrTriangle, triangleCount)
-    if (links.y > 0u) {
-      if (bvhTestLeaf(links.x, links.y, origin, direction, tMin, anyHit, hit)) {
-        found = true;
-        if (anyHit) return true;
-      }
-    } else {
-      uint left = links.x, right = left + 1u;
-      LGH_BVH_COUNT(bvhInnerNodes, 1u);
-      LGH_BVH_COUNT(bvhBoxTests, 2u);
-      float tLeft = bvhEnterNode(left, origin, invDirection, tMin, hit.t);
-      float tRight = bvhEnterNode(right, origin, invDirection, tMin, hit.t);
-      bool hitLeft = !isinf(tLeft), hitRight = !isinf(tRight);
-      if (hitLeft && hitRight) {
-        // Nearer child first; the farther one waits on the stack.
-        bool leftFirst = tLeft <= tRight;
-        stack[stackSize++] = leftFirst ? right : left;
-        node = leftFirst ? left : right;
-        continue;
-      }
-      if (hitLeft || hitRight) {
-        node = hitLeft ? left : right;
-        continue;
-      }
+    if (walk.node == kBvhNoNode) {
+      if (walk.stackSize == 0u) return false;
+      walk.node = bvhStack[--walk.stackSize];
     }
-    if (stackSize == 0u) break;
-    node = stack[--stackSize];
+    uvec2 links = bvhNodeLinks(walk.node);  // (firstChildOrTriangle, triangleCount)
+    walk.node = kBvhNoNode;
+    if (links.y > 0u) {
+      leaf = BvhLeafCursor(links.x, links.y);
+      return true;
+    }
+    uint left = links.x, right = left + 1u;
+    LGH_BVH_COUNT(bvhInnerNodes, 1u);
+    LGH_BVH_COUNT(bvhBoxTests, 2u);
+    float tLeft = bvhEnterNode(left, origin, invDirection, tMin, tMax);
+    float tRight = bvhEnterNode(right, origin, invDirection, tMin, tMax);
+    bool hitLeft = !isinf(tLeft), hitRight = !isinf(tRight);
+    if (hitLeft && hitRight) {
+      // Nearer child first; the farther one waits on the stack.
+      bool leftFirst = tLeft <= tRight;
+      bvhStack[walk.stackSize++] = leftFirst ? right : left;
+      walk.node = leftFirst ? left : right;
+    } else if (hitLeft || hitRight) {
+      walk.node = hitLeft ? left : right;
+    }
   }
-  return found;
+  return false;  // not reached
 }
 
 #endif

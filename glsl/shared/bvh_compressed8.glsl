@@ -2,10 +2,9 @@
 // gpu::kBvhLayoutCompressed8; Ylitie, Karras & Laine 2017): a node is five texels for eight children, whose
 // boxes are decoded from their bytes (origin + q x step, exact but for one rounding, as bvh.cpp checked
 // them) and slab-tested four at a time into a mask of the entered slots. The children are taken from
-// the mask in slot order, one a step of the loop (a leaf tested, or a node entered); entering a node
-// leaves its parent's remaining slots on the stack, one entry per level (Ylitie et al.'s node groups),
-// so the build's depth limit, kBvhStackSize - 1, bounds it. Closest-hit takes the children unordered:
-// boxes entered before a nearer hit are still walked (correct, not the fastest).
+// the mask in slot order; entering a node leaves its parent's remaining slots on the stack, one entry per
+// level (Ylitie et al.'s node groups), so the build's depth limit, kBvhStackSize - 1, bounds it. Closest-hit takes the
+// children unordered: boxes entered before a nearer hit are still walked (correct, not the fastest).
 #ifndef LGH_BVH_COMPRESSED8_GLSL
 #define LGH_BVH_COMPRESSED8_GLSL
 
@@ -39,49 +38,51 @@ uint bvhEnteredChildren(BvhCompressedNode node, vec3 origin, vec3 invDirection, 
   return entered & (node.exponents >> 24u);  // the slots in use
 }
 
-bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, out RayHit hit) {
-  hit = bvhNoHit(tMax);
-  if (textureSize(bvhNodeWords) < kBvhCompressedNodeTexels) return false;  // no triangles (a stub buffer)
-  vec3 invDirection = bvhInverseDirection(direction);
+// The walk: the node whose children are being taken, its header (childBase, triangleBase, meta) and
+// the slots left; above it on bvhStack, one (node | slots << 24) per level.
+struct BvhWalk {
+  uint stackSize;
+  uint group;
+  uint slots;
+  uvec4 header;
+};
 
-  // The node whose children are being taken, its header (childBase, triangleBase, meta) and the slots
-  // left; above it, one (node | slots << 24) per level.
-  uint stack[kBvhStackSize];
-  uint stackSize = 0u;
+bool bvhWalkStart(out BvhWalk walk, vec3 origin, vec3 invDirection, float tMin, float tMax) {
+  if (textureSize(bvhNodeWords) < kBvhCompressedNodeTexels) return false;  // no triangles (a stub buffer)
   BvhCompressedNode root = bvhCompressedNode(0u);
   LGH_BVH_COUNT(bvhInnerNodes, 1u);
   LGH_BVH_COUNT(bvhBoxTests, 8u);
-  uint group = 0u, slots = bvhEnteredChildren(root, origin, invDirection, tMin, hit.t);
-  uvec4 header = uvec4(root.childBase, root.triangleBase, root.meta);
-  bool found = false;
+  walk = BvhWalk(0u, 0u, bvhEnteredChildren(root, origin, invDirection, tMin, tMax),
+                 uvec4(root.childBase, root.triangleBase, root.meta));
+  return true;
+}
+
+bool bvhWalkToLeaf(inout BvhWalk walk, vec3 origin, vec3 invDirection, float tMin, float tMax, bool anyHit,
+                   out BvhLeafCursor leaf) {
   while (true) {
-    if (slots == 0u) {
-      if (stackSize == 0u) break;
-      uint entry = stack[--stackSize];
-      group = entry & kBvhCompressedNodeMask;
-      slots = entry >> 24u;
-      header = texelFetch(bvhNodeWords, kBvhCompressedNodeTexels * int(group) + 1);
+    if (walk.slots == 0u) {
+      if (walk.stackSize == 0u) return false;
+      uint entry = bvhStack[--walk.stackSize];
+      walk.group = entry & kBvhCompressedNodeMask;
+      walk.slots = entry >> 24u;
+      walk.header = texelFetch(bvhNodeWords, kBvhCompressedNodeTexels * int(walk.group) + 1);
     }
-    uint c = uint(findLSB(slots));
-    slots &= slots - 1u;
-    uint meta = (header[2u + (c >> 2u)] >> (8u * (c & 3u))) & 0xffu;
+    uint c = uint(findLSB(walk.slots));
+    walk.slots &= walk.slots - 1u;
+    uint meta = (walk.header[2u + (c >> 2u)] >> (8u * (c & 3u))) & 0xffu;
     if ((meta & kBvhMetaInner) == 0u) {
-      uint count = (meta >> kBvhMetaCountShift) + 1u;
-      if (bvhTestLeaf(header.y + (meta & kBvhMetaOffsetMask), count, origin, direction, tMin, anyHit, hit)) {
-        found = true;
-        if (anyHit) return true;
-      }
-      continue;
+      leaf = BvhLeafCursor(walk.header.y + (meta & kBvhMetaOffsetMask), (meta >> kBvhMetaCountShift) + 1u);
+      return true;
     }
-    if (slots != 0u) stack[stackSize++] = group | slots << 24u;
-    group = header.x + (meta & kBvhMetaInnerIndexMask);
-    BvhCompressedNode node = bvhCompressedNode(group);
+    if (walk.slots != 0u) bvhStack[walk.stackSize++] = walk.group | walk.slots << 24u;
+    walk.group = walk.header.x + (meta & kBvhMetaInnerIndexMask);
+    BvhCompressedNode node = bvhCompressedNode(walk.group);
     LGH_BVH_COUNT(bvhInnerNodes, 1u);
     LGH_BVH_COUNT(bvhBoxTests, 8u);
-    slots = bvhEnteredChildren(node, origin, invDirection, tMin, hit.t);
-    header = uvec4(node.childBase, node.triangleBase, node.meta);
+    walk.slots = bvhEnteredChildren(node, origin, invDirection, tMin, tMax);
+    walk.header = uvec4(node.childBase, node.triangleBase, node.meta);
   }
-  return found;
+  return false;  // not reached
 }
 
 #endif

@@ -29,15 +29,13 @@ layout(binding = LGH_TEXTURE_BVH_NODE_WORDS) uniform usamplerBuffer bvhNodeWords
 layout(binding = LGH_TEXTURE_BVH_TRIANGLE_FLOATS) uniform samplerBuffer bvhTriangleFloats;
 layout(binding = LGH_TEXTURE_BVH_TRIANGLE_WORDS) uniform usamplerBuffer bvhTriangleWords;
 
-// BvhTriangle `index`'s vertex and edges (its first three vec3s; the words beside them are read on a hit).
+// BvhTriangle `index`'s vertex and edges (its first three vec3s).
 void bvhTriangleGeometry(uint index, out vec3 v0, out vec3 edge1, out vec3 edge2) {
   int texel = kBvhTriangleTexels * int(index);
   v0 = texelFetch(bvhTriangleFloats, texel).xyz;
   edge1 = texelFetch(bvhTriangleFloats, texel + 1).xyz;
   edge2 = texelFetch(bvhTriangleFloats, texel + 2).xyz;
 }
-uint bvhSceneTriangle(uint index) { return texelFetch(bvhTriangleWords, kBvhTriangleTexels * int(index)).w; }
-uint bvhTriangleFlags(uint index) { return texelFetch(bvhTriangleWords, kBvhTriangleTexels * int(index) + 1).w; }
 
 struct RayHit {
   float t;
@@ -46,37 +44,68 @@ struct RayHit {
   vec2 barycentrics;  // (u, v): weights of vertices 1 and 2
 };
 
-RayHit bvhNoHit(float tMax) { return RayHit(tMax, 0xffffffffu, 0xffffffffu, vec2(0.0)); }
+const uint kBvhNoTriangle = 0xffffffffu;
+RayHit bvhNoHit(float tMax) { return RayHit(tMax, kBvhNoTriangle, kBvhNoTriangle, vec2(0.0)); }
 
 // A zero direction component gives +-inf in the inverse direction, never NaN: it is kept away from 0.
 vec3 bvhInverseDirection(vec3 direction) {
   return 1.0 / mix(direction, vec3(1e-30) * sign(direction + vec3(1e-38)), lessThan(abs(direction), vec3(1e-30)));
 }
 
-// Tests the leaf's triangles against (tMin, hit.t); true on a hit (hit updated). Hits on triangles of
-// alphaMode MASK materials count only where the surface is not cut out (so cut-outs let light and shadow
-// rays through, as they let the camera see through).
-bool bvhTestLeaf(uint first, uint count, vec3 origin, vec3 direction, float tMin, bool anyHit, inout RayHit hit) {
-  bool found = false;
-  for (uint i = 0u; i < count; ++i) {
-    uint triangleIndex = first + i;
+// The triangles of a leaf still to test: a walk through the BVH stops at a hit on an alpha-masked
+// triangle and resumes after it once the caller has tested the cut-out.
+struct BvhLeafCursor {
+  uint next;  // BvhTriangle index
+  uint left;
+};
+
+// What testing a leaf's triangles ended in.
+const uint kBvhLeafTested = 0u;   // all tested (closest-hit: a nearer opaque hit is in hit)
+const uint kBvhLeafBlocked = 1u;  // any-hit: an opaque triangle ends the ray (in hit)
+const uint kBvhLeafMasked = 2u;   // a hit on an alpha-masked triangle, in candidate: test its cut-out
+
+// Tests the cursor's triangles against (tMin, hit.t), advancing it. A triangle is read as three
+// integer texels (its ids ride in the vertices' w), and a hit on an alpha-masked one is handed back
+// rather than tested here: the cut-out reads the material, the vertices and a texture, and a SIMD
+// machine (llvmpipe; a GPU's divergent warp) runs that code for every lane on every step of the walk's
+// loop that it is inside, whether a lane takes it or not. Outside the loop it runs once per candidate.
+uint bvhTestLeaf(inout BvhLeafCursor cursor, vec3 origin, vec3 direction, float tMin, bool anyHit, inout RayHit hit,
+                 out RayHit candidate) {
+  while (cursor.left > 0u) {
+    uint index = cursor.next++;
+    --cursor.left;
     LGH_BVH_COUNT(bvhTriangleTests, 1u);
-    vec3 v0, edge1, edge2, tuv;
-    bvhTriangleGeometry(triangleIndex, v0, edge1, edge2);
-    if (!intersectTriangle(origin, direction, v0, edge1, edge2, tMin, hit.t, tuv)) continue;
-    uint sceneTriangle = bvhSceneTriangle(triangleIndex);
-    if ((bvhTriangleFlags(triangleIndex) & kBvhTriangleAlphaMasked) == 0u || !surfaceCutOut(sceneTriangle, tuv.yz)) {
-      hit.t = tuv.x;
-      hit.barycentrics = tuv.yz;
-      hit.sceneTriangle = sceneTriangle;
-      hit.bvhTriangle = triangleIndex;
-      found = true;
-      if (anyHit) return true;
+    int texel = kBvhTriangleTexels * int(index);
+    uvec4 t0 = texelFetch(bvhTriangleWords, texel), t1 = texelFetch(bvhTriangleWords, texel + 1);
+    vec3 edge2 = uintBitsToFloat(texelFetch(bvhTriangleWords, texel + 2).xyz), tuv;
+    if (!intersectTriangle(origin, direction, uintBitsToFloat(t0.xyz), uintBitsToFloat(t1.xyz), edge2, tMin, hit.t,
+                           tuv))
+      continue;
+    RayHit found = RayHit(tuv.x, t0.w, index, tuv.yz);
+    if ((t1.w & kBvhTriangleAlphaMasked) != 0u) {
+      candidate = found;
+      return kBvhLeafMasked;
     }
+    hit = found;
+    if (anyHit) return kBvhLeafBlocked;
   }
-  return found;
+  return kBvhLeafTested;
 }
 
+// A candidate on an alpha-masked triangle counts where the surface is not cut out (so cut-outs let
+// light and shadow rays through, as they let the camera see through); true when it does (hit updated).
+bool bvhAcceptMasked(RayHit candidate, inout RayHit hit) {
+  if (surfaceCutOut(candidate.sceneTriangle, candidate.barycentrics)) return false;
+  hit = candidate;
+  return true;
+}
+
+// The walk's stack (each layout's entries), private to the invocation.
+uint bvhStack[kBvhStackSize];
+
+// Each layout's file defines its walk's state (BvhWalk), bvhWalkStart (false: nothing to walk) and
+// bvhWalkToLeaf (walks nodes until a leaf whose box the ray enters within (tMin, tMax); false when none
+// is left).
 #if LGH_BVH_LAYOUT == 1  // kBvhLayoutWide4
 #include "shared/bvh_wide4.glsl"
 #elif LGH_BVH_LAYOUT == 2  // kBvhLayoutCompressed8
@@ -84,6 +113,33 @@ bool bvhTestLeaf(uint first, uint count, vec3 origin, vec3 direction, float tMin
 #else
 #include "shared/bvh_binary.glsl"
 #endif
+
+// The walk, the leaves' triangles and the cut-out tests as three loops, shaped by how SIMD lanes
+// (llvmpipe's, a GPU warp's) run a loop: every lane runs every branch of the body, masked, until no lane
+// is left in the loop. Innermost (bvhWalkToLeaf), the nodes until a leaf: a lane with a leaf waits for
+// the others to reach theirs, so no step pays for both a node's boxes and triangles. Around it, the
+// leaf's triangles, then the next leaf. Outermost, the cut-out test of the alpha-masked hit that the
+// walk stopped at (bvhTestLeaf), run once per candidate rather than on every step (measurements.md,
+// "Loops that SIMD lanes run together").
+bool bvhTrace(vec3 origin, vec3 direction, float tMin, float tMax, bool anyHit, out RayHit hit) {
+  hit = bvhNoHit(tMax);
+  vec3 invDirection = bvhInverseDirection(direction);
+  BvhWalk walk;
+  if (!bvhWalkStart(walk, origin, invDirection, tMin, tMax)) return false;
+  BvhLeafCursor leaf = BvhLeafCursor(0u, 0u);
+  RayHit candidate;
+  while (true) {
+    while (true) {
+      uint tested = bvhTestLeaf(leaf, origin, direction, tMin, anyHit, hit, candidate);
+      if (tested == kBvhLeafBlocked) return true;
+      if (tested == kBvhLeafMasked) break;
+      if (!bvhWalkToLeaf(walk, origin, invDirection, tMin, hit.t, anyHit, leaf))
+        return hit.bvhTriangle != kBvhNoTriangle;
+    }
+    if (bvhAcceptMasked(candidate, hit) && anyHit) return true;
+  }
+  return false;  // not reached
+}
 
 bool traceAnyHit(vec3 origin, vec3 direction, float tMin, float tMax) {
   RayHit unused;

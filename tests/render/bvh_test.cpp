@@ -17,10 +17,12 @@
 #include <tuple>
 
 #include "gl_test_env.h"
+#include "gltf_writer.h"
 #include "render/gl/buffer.h"
 #include "render/gl/program.h"
 #include "render/scene/gpu_bvh.h"
 #include "render/scene/scene.h"
+#include "render/scene/scene_gpu.h"
 #include "render/scene/tracing_program.h"
 #include "render/settings.h"
 #include "shared/bindings.h"
@@ -107,16 +109,21 @@ BruteForceHit bruteForce(const Mesh& mesh, const TestRay& ray) {
   return best;
 }
 
-std::vector<TestHit> traceOnGpu(const Bvh& bvh, const std::vector<TestRay>& rays) {
-  const GpuBvh gpuBvh(bvh);
+// Traces the rays (closest hit and any hit) through the BVH that is bound, in `layout`.
+std::vector<TestHit> traceBound(BvhLayout layout, const std::vector<TestRay>& rays) {
   gl::Buffer rayBuffer = gl::Buffer::fromVector({"test", "data"}, rays),
              hitBuffer({"test", "hits"}, rays.size() * sizeof(TestHit));
-  gpuBvh.bind();
   rayBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   hitBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
-  TracingProgram("tests/trace_rays.comp").forLayout(bvh.layout).dispatch1D(rays.size(), 64);
+  TracingProgram("tests/trace_rays.comp").forLayout(layout).dispatch1D(rays.size(), 64);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   return hitBuffer.downloadAll<TestHit>();
+}
+
+std::vector<TestHit> traceOnGpu(const Bvh& bvh, const std::vector<TestRay>& rays) {
+  const GpuBvh gpuBvh(bvh);
+  gpuBvh.bind();
+  return traceBound(bvh.layout, rays);
 }
 
 // Compares GPU results with brute force; returns the number of unexplained mismatches.
@@ -408,6 +415,94 @@ TEST_P(BvhTraceTest, MatchesBruteForceOnSponza) {
       "cases\n",
       scene.triangleCount(), bvh.stats.triangleReferences, bvh.stats.nodeCount, bvh.stats.maxDepth, rays.size(),
       excused);
+}
+
+// Eight stacked layers of alpha-masked materials (4 x 4 squares each), each layer's texture a row of
+// texels kept or cut out at random, with a different width per layer: rays up and down through the stack, some of them
+// segments ending inside it, stop at the first layer whose texel there is kept. The traversal stops its walk at each
+// masked hit and tests the cut-out outside it, then resumes with the leaf's next triangle, so a walk that resumed
+// wrongly skips or repeats them.
+TEST_P(BvhTraceTest, StopsAtTheFirstAlphaMaskedLayerThatIsNotCutOut) {
+  constexpr int kLayers = 8;
+  constexpr std::uint32_t kCells = 4;
+  // 1 cm apart, about the origin (which the loader keeps): too close for the build to split them, so each
+  // leaf holds triangles of several layers.
+  const auto layerY = [](int l) { return 0.01f * (float(l) - 3.5f); };
+  const int widths[kLayers] = {3, 5, 7, 4, 6, 9, 2, 8};
+  std::mt19937 rng(5);
+  std::vector<std::vector<bool>> kept(kLayers);
+  TempDir dir;
+  GltfWriter w;
+  std::vector<PrimitiveDesc> layers;
+  for (int l = 0; l < kLayers; ++l) {
+    std::vector<std::uint8_t> rgba;
+    for (int x = 0; x < widths[l]; ++x) {
+      kept[l].push_back(rng() % 5 == 0);
+      rgba.insert(rgba.end(), {255, 255, 255, std::uint8_t(kept[l].back() ? 255 : 0)});
+    }
+    const int texture = w.addTexture(w.addImageEmbedded(encodePng(widths[l], 1, rgba)));
+    const int material = w.addMaterial(MaterialDesc{}.withBaseColorTexture(texture).withAlphaMask(0.5));
+    PrimitiveDesc layer;  // x, z in [-1, 1] as kCells x kCells squares, texture u = (x + 1) / 2
+    layer.material = material;
+    for (int j = 0; j <= kCells; ++j)
+      for (int i = 0; i <= kCells; ++i) {
+        const glm::vec2 uv(float(i) / kCells, float(j) / kCells);
+        layer.positions.push_back({2.0f * uv.x - 1.0f, layerY(l), 1.0f - 2.0f * uv.y});
+        layer.texcoords.push_back(uv);
+      }
+    for (std::uint32_t j = 0; j < kCells; ++j)
+      for (std::uint32_t i = 0; i < kCells; ++i) {
+        const std::uint32_t a = j * (kCells + 1) + i, c = a + kCells + 2;
+        layer.indices.insert(layer.indices.end(), {a, a + 1, c, a, c, c - 1});
+      }
+    layers.push_back(layer);
+  }
+  w.addNode(NodeDesc{}.withMesh(w.addMesh(layers)));
+  const Scene scene = loadScene(w.write(dir / "layers.gltf"));
+  ASSERT_EQ(scene.origin, glm::dvec3(0.0));
+  const SceneGpu sceneGpu(scene, GetParam());
+
+  // Rays kept clear of texel borders and of the squares' edges and diagonals, where rounding decides.
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<TestRay> rays;
+  std::vector<float> expected;  // the closest hit's t, or -1
+  while (rays.size() < 4000) {
+    const bool up = rays.size() % 2 == 0;
+    const glm::vec3 o(u(rng) - 0.5f, up ? -1.0f : 1.0f, u(rng) - 0.5f);
+    const glm::vec3 d = glm::normalize(glm::vec3(0.1f * u(rng) - 0.05f, up ? 1.0f : -1.0f, 0.1f * u(rng) - 0.05f));
+    const float tMax = rays.size() % 3 == 0 ? 0.96f + 0.08f * u(rng) : std::numeric_limits<float>::infinity();
+    float closest = -1.0f;
+    bool clear = true;
+    for (int k = 0; k < kLayers; ++k) {
+      const int l = up ? k : kLayers - 1 - k;
+      const float t = (layerY(l) - o.y) / d.y;
+      const glm::vec3 p = o + t * d;
+      const float texel = (p.x + 1.0f) / 2.0f * float(widths[l]);
+      const glm::vec2 cell = glm::fract(glm::vec2(p.x + 1.0f, 1.0f - p.z) / 2.0f * float(kCells));
+      const auto away = [](float a) { return std::abs(a - std::round(a)) > 1e-3f; };
+      clear =
+          clear && away(texel) && away(cell.x) && away(cell.y) && away(cell.x - cell.y) && std::abs(t - tMax) > 1e-4f;
+      if (closest < 0.0f && t < tMax && kept[l][size_t(texel)]) closest = t;
+    }
+    if (!clear) continue;
+    rays.push_back({glm::vec4(o, 0.0f), glm::vec4(d, tMax)});
+    expected.push_back(closest);
+  }
+  sceneGpu.bindForCompute();
+  const std::vector<TestHit> hits = traceBound(GetParam(), rays);
+  size_t wrong = 0, blocked = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const bool expectHit = expected[i] >= 0.0f;
+    blocked += expectHit;
+    const bool right = (hits[i].anyHit != 0) == expectHit &&
+                       (expectHit ? std::abs(hits[i].t - expected[i]) < 1e-4f : hits[i].t < 0.0f);
+    if (!right && ++wrong <= 5)
+      ADD_FAILURE() << "ray " << i << ": closest t " << hits[i].t << ", any hit " << hits[i].anyHit << "; expected t "
+                    << expected[i];
+  }
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(blocked, rays.size() / 4) << "test set-up: most rays should meet a kept texel";
+  EXPECT_LT(blocked, rays.size() * 19 / 20) << "test set-up: some rays should pass every layer or end first";
 }
 
 INSTANTIATE_TEST_SUITE_P(Layouts, BvhTraceTest, kLayouts, layoutName);
