@@ -9,8 +9,9 @@
 #include "shared/ray_triangle.h"
 #include "shared/scene_materials.glsl"
 
-#ifndef LGH_BVH_LAYOUT
-#error "a shader that traces rays is compiled for the scene's BVH layout (gl::TracingProgram defines LGH_BVH_LAYOUT)"
+#if !defined(LGH_BVH_LAYOUT) || !defined(LGH_BVH_ALPHA_MASKED)
+#error \
+    "a shader that traces rays is compiled for the scene's BVH (TracingProgram defines LGH_BVH_LAYOUT, LGH_BVH_ALPHA_MASKED)"
 #endif
 
 // With LGH_BVH_COUNTERS (lgh-bench rays) the traversal counts its work in these, per invocation: inner
@@ -82,10 +83,12 @@ uint bvhTestLeaf(inout BvhLeafCursor cursor, vec3 origin, vec3 direction, float 
                            tuv))
       continue;
     RayHit found = RayHit(tuv.x, t0.w, index, tuv.yz);
+#if LGH_BVH_ALPHA_MASKED
     if ((t1.w & kBvhTriangleAlphaMasked) != 0u) {
       candidate = found;
       return kBvhLeafMasked;
     }
+#endif
     hit = found;
     if (anyHit) return kBvhLeafBlocked;
   }
@@ -95,9 +98,13 @@ uint bvhTestLeaf(inout BvhLeafCursor cursor, vec3 origin, vec3 direction, float 
 // A candidate on an alpha-masked triangle counts where the surface is not cut out (so cut-outs let
 // light and shadow rays through, as they let the camera see through); true when it does (hit updated).
 bool bvhAcceptMasked(RayHit candidate, inout RayHit hit) {
+#if LGH_BVH_ALPHA_MASKED
   if (surfaceCutOut(candidate.sceneTriangle, candidate.barycentrics)) return false;
   hit = candidate;
   return true;
+#else
+  return false;  // not reached: no triangle is alpha-masked
+#endif
 }
 
 // The walk's stack (each layout's entries), private to the invocation.

@@ -39,6 +39,9 @@ struct Bvh {
   std::vector<gpu::BvhWideNode> wideNodes;              // wide4: wideNodes[0] is the root (empty without triangles)
   std::vector<gpu::BvhCompressedNode> compressedNodes;  // compressed8: [0] is the root (empty without triangles)
   std::vector<gpu::BvhTriangle> triangles;              // leaf order
+  // Some triangle's flags carry kBvhTriangleAlphaMasked (set with them, by SceneGpu): only then does a
+  // tracing program carry the cut-out test (TracingProgram).
+  bool alphaMasked = false;
   BvhBuildStats stats;
 
   size_t nodeBytes() const {

@@ -82,8 +82,10 @@ void SceneGpu::buildBvh(BvhLayout layout, BvhQuality quality) {
   bvh_ = lgh::buildBvh(scene_.positions, scene_.indices, layout, quality);
   // Alpha-masked triangles are marked in the BVH so that traversal tests alpha only where it can matter.
   for (gpu::BvhTriangle& t : bvh_.triangles)
-    if (scene_.materials[scene_.triangleMaterials[t.sceneTriangle]].alphaMode == AlphaMode::Mask)
+    if (scene_.materials[scene_.triangleMaterials[t.sceneTriangle]].alphaMode == AlphaMode::Mask) {
       t.flags |= gpu::kBvhTriangleAlphaMasked;
+      bvh_.alphaMasked = true;
+    }
   gpuBvh_ = GpuBvh(bvh_);
   bvhBuildMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }

@@ -177,7 +177,7 @@ TEST_F(ReferenceTest, VisibilityAgreesWithGpuBvh) {
     gpuBvh.bind();
     rayBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
     hitBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
-    TracingProgram("tests/trace_rays.comp").forLayout(layout).dispatch1D(gpuRays.size(), 64);
+    TracingProgram("tests/trace_rays.comp").forBvh(bvh).dispatch1D(gpuRays.size(), 64);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const std::vector<TestHit> gpuHits = hitBuffer.downloadAll<TestHit>();
 

@@ -109,13 +109,13 @@ BruteForceHit bruteForce(const Mesh& mesh, const TestRay& ray) {
   return best;
 }
 
-// Traces the rays (closest hit and any hit) through the BVH that is bound, in `layout`.
-std::vector<TestHit> traceBound(BvhLayout layout, const std::vector<TestRay>& rays) {
+// Traces the rays (closest hit and any hit) through `bvh`, which is bound.
+std::vector<TestHit> traceBound(const Bvh& bvh, const std::vector<TestRay>& rays) {
   gl::Buffer rayBuffer = gl::Buffer::fromVector({"test", "data"}, rays),
              hitBuffer({"test", "hits"}, rays.size() * sizeof(TestHit));
   rayBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS0);
   hitBuffer.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
-  TracingProgram("tests/trace_rays.comp").forLayout(layout).dispatch1D(rays.size(), 64);
+  TracingProgram("tests/trace_rays.comp").forBvh(bvh).dispatch1D(rays.size(), 64);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   return hitBuffer.downloadAll<TestHit>();
 }
@@ -123,7 +123,7 @@ std::vector<TestHit> traceBound(BvhLayout layout, const std::vector<TestRay>& ra
 std::vector<TestHit> traceOnGpu(const Bvh& bvh, const std::vector<TestRay>& rays) {
   const GpuBvh gpuBvh(bvh);
   gpuBvh.bind();
-  return traceBound(bvh.layout, rays);
+  return traceBound(bvh, rays);
 }
 
 // Compares GPU results with brute force; returns the number of unexplained mismatches.
@@ -444,8 +444,8 @@ TEST_P(BvhTraceTest, StopsAtTheFirstAlphaMaskedLayerThatIsNotCutOut) {
     const int material = w.addMaterial(MaterialDesc{}.withBaseColorTexture(texture).withAlphaMask(0.5));
     PrimitiveDesc layer;  // x, z in [-1, 1] as kCells x kCells squares, texture u = (x + 1) / 2
     layer.material = material;
-    for (int j = 0; j <= kCells; ++j)
-      for (int i = 0; i <= kCells; ++i) {
+    for (std::uint32_t j = 0; j <= kCells; ++j)
+      for (std::uint32_t i = 0; i <= kCells; ++i) {
         const glm::vec2 uv(float(i) / kCells, float(j) / kCells);
         layer.positions.push_back({2.0f * uv.x - 1.0f, layerY(l), 1.0f - 2.0f * uv.y});
         layer.texcoords.push_back(uv);
@@ -489,7 +489,8 @@ TEST_P(BvhTraceTest, StopsAtTheFirstAlphaMaskedLayerThatIsNotCutOut) {
     expected.push_back(closest);
   }
   sceneGpu.bindForCompute();
-  const std::vector<TestHit> hits = traceBound(GetParam(), rays);
+  ASSERT_TRUE(sceneGpu.bvh().alphaMasked);
+  const std::vector<TestHit> hits = traceBound(sceneGpu.bvh(), rays);
   size_t wrong = 0, blocked = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
     const bool expectHit = expected[i] >= 0.0f;
