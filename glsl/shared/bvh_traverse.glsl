@@ -1,7 +1,7 @@
 // BVH traversal for compute shaders: any-hit (shadow rays: the first hit ends the ray) and closest-hit
-// (VPL paths, tests), over the scene's BVH in the node layout the shader is compiled for
-// (LGH_BVH_LAYOUT = gpu::kBvhLayout*, which gl::TracingProgram defines from the scene): each layout's
-// traversal is one file, with the same functions.
+// (VPL paths, tests), over the scene's BVH as the shader is compiled for it (TracingProgram defines
+// LGH_BVH_LAYOUT = gpu::kBvhLayout*, and LGH_BVH_ALPHA_MASKED where a triangle is alpha-masked): each
+// layout's walk is one file with the same functions, which bvhTrace below drives.
 #ifndef LGH_BVH_TRAVERSE_GLSL
 #define LGH_BVH_TRAVERSE_GLSL
 #include "shared/bindings.h"
