@@ -52,11 +52,10 @@
 #define LGH_TEXTURE_ACCUM_PREVIOUS_NORMAL 8
 #define LGH_TEXTURE_ACCUM_HEAVIEST 9    // accumulation history: the frame with the largest mean weight
 #define LGH_TEXTURE_ACCUM_RAW_RATIO 10  // accumulation under motion: this frame's raw ratio (a copy)
-// The scene's BVH (render/scene/gpu_bvh.h), where every shader that traces reads it: the last four of the
+// The scene's BVH (render/scene/gpu_bvh.h), where every shader that traces reads it: the last three of the
 // 16 units any compute shader has.
-#define LGH_TEXTURE_BVH_NODE_FLOATS 12
-#define LGH_TEXTURE_BVH_NODE_WORDS 13
-#define LGH_TEXTURE_BVH_TRIANGLE_FLOATS 14
+#define LGH_TEXTURE_BVH_NODE_FLOATS 13
+#define LGH_TEXTURE_BVH_NODE_WORDS 14
 #define LGH_TEXTURE_BVH_TRIANGLE_WORDS 15
 
 // Image units, per pass.

@@ -47,13 +47,20 @@ struct BvhWalk {
   uvec4 header;
 };
 
-bool bvhWalkStart(out BvhWalk walk, vec3 origin, vec3 invDirection, float tMin, float tMax) {
-  if (textureSize(bvhNodeWords) < kBvhCompressedNodeTexels) return false;  // no triangles (a stub buffer)
-  BvhCompressedNode root = bvhCompressedNode(0u);
+// Enters node `group`: its children's boxes tested into the slots to take.
+void bvhWalkEnter(inout BvhWalk walk, uint group, vec3 origin, vec3 invDirection, float tMin, float tMax) {
+  BvhCompressedNode node = bvhCompressedNode(group);
   LGH_BVH_COUNT(bvhInnerNodes, 1u);
   LGH_BVH_COUNT(bvhBoxTests, 8u);
-  walk = BvhWalk(0u, 0u, bvhEnteredChildren(root, origin, invDirection, tMin, tMax),
-                 uvec4(root.childBase, root.triangleBase, root.meta));
+  walk.group = group;
+  walk.slots = bvhEnteredChildren(node, origin, invDirection, tMin, tMax);
+  walk.header = uvec4(node.childBase, node.triangleBase, node.meta);
+}
+
+bool bvhWalkStart(out BvhWalk walk, vec3 origin, vec3 invDirection, float tMin, float tMax) {
+  if (textureSize(bvhNodeWords) < kBvhCompressedNodeTexels) return false;  // no triangles (a stub buffer)
+  walk.stackSize = 0u;
+  bvhWalkEnter(walk, 0u, origin, invDirection, tMin, tMax);
   return true;
 }
 
@@ -75,12 +82,7 @@ bool bvhWalkToLeaf(inout BvhWalk walk, vec3 origin, vec3 invDirection, float tMi
       return true;
     }
     if (walk.slots != 0u) bvhStack[walk.stackSize++] = walk.group | walk.slots << 24u;
-    walk.group = walk.header.x + (meta & kBvhMetaInnerIndexMask);
-    BvhCompressedNode node = bvhCompressedNode(walk.group);
-    LGH_BVH_COUNT(bvhInnerNodes, 1u);
-    LGH_BVH_COUNT(bvhBoxTests, 8u);
-    walk.slots = bvhEnteredChildren(node, origin, invDirection, tMin, tMax);
-    walk.header = uvec4(node.childBase, node.triangleBase, node.meta);
+    bvhWalkEnter(walk, walk.header.x + (meta & kBvhMetaInnerIndexMask), origin, invDirection, tMin, tMax);
   }
   return false;  // not reached
 }

@@ -23,19 +23,19 @@ uint bvhInnerNodes = 0u, bvhBoxTests = 0u, bvhTriangleTests = 0u;
 #define LGH_BVH_COUNT(counter, n)
 #endif
 
-// The BVH as texels (render/scene/gpu_bvh.h): a float and an integer view of its nodes and of its triangles,
-// whose structs (shared/bvh_types.h) are whole texels.
+// The BVH as texels (render/scene/gpu_bvh.h): a float and an integer view of its nodes, an integer view of
+// its triangles, whose structs (shared/bvh_types.h) are whole texels.
 layout(binding = LGH_TEXTURE_BVH_NODE_FLOATS) uniform samplerBuffer bvhNodeFloats;
 layout(binding = LGH_TEXTURE_BVH_NODE_WORDS) uniform usamplerBuffer bvhNodeWords;
-layout(binding = LGH_TEXTURE_BVH_TRIANGLE_FLOATS) uniform samplerBuffer bvhTriangleFloats;
 layout(binding = LGH_TEXTURE_BVH_TRIANGLE_WORDS) uniform usamplerBuffer bvhTriangleWords;
 
-// BvhTriangle `index`'s vertex and edges (its first three vec3s).
-void bvhTriangleGeometry(uint index, out vec3 v0, out vec3 edge1, out vec3 edge2) {
+// BvhTriangle `index`, its three texels read as integers (the vertex's and edges' bits cast back exactly).
+BvhTriangle bvhTriangle(uint index) {
   int texel = kBvhTriangleTexels * int(index);
-  v0 = texelFetch(bvhTriangleFloats, texel).xyz;
-  edge1 = texelFetch(bvhTriangleFloats, texel + 1).xyz;
-  edge2 = texelFetch(bvhTriangleFloats, texel + 2).xyz;
+  uvec4 t0 = texelFetch(bvhTriangleWords, texel), t1 = texelFetch(bvhTriangleWords, texel + 1),
+        t2 = texelFetch(bvhTriangleWords, texel + 2);
+  return BvhTriangle(uintBitsToFloat(t0.xyz), t0.w, uintBitsToFloat(t1.xyz), t1.w, uintBitsToFloat(t2.xyz),
+                     uintBitsToFloat(t2.w));
 }
 
 struct RayHit {
@@ -65,8 +65,8 @@ const uint kBvhLeafTested = 0u;   // all tested (closest-hit: a nearer opaque hi
 const uint kBvhLeafBlocked = 1u;  // any-hit: an opaque triangle ends the ray (in hit)
 const uint kBvhLeafMasked = 2u;   // a hit on an alpha-masked triangle, in candidate: test its cut-out
 
-// Tests the cursor's triangles against (tMin, hit.t), advancing it. A triangle is read as three
-// integer texels (its ids ride in the vertices' w), and a hit on an alpha-masked one is handed back
+// Tests the cursor's triangles against (tMin, hit.t), advancing it. A triangle is three texels (its ids
+// ride in the vertex's and first edge's w), and a hit on an alpha-masked one is handed back
 // rather than tested here: the cut-out reads the material, the vertices and a texture, and a SIMD
 // machine (llvmpipe; a GPU's divergent warp) runs that code for every lane on every step of the walk's
 // loop that it is inside, whether a lane takes it or not. Outside the loop it runs once per candidate.
@@ -76,15 +76,12 @@ uint bvhTestLeaf(inout BvhLeafCursor cursor, vec3 origin, vec3 direction, float 
     uint index = cursor.next++;
     --cursor.left;
     LGH_BVH_COUNT(bvhTriangleTests, 1u);
-    int texel = kBvhTriangleTexels * int(index);
-    uvec4 t0 = texelFetch(bvhTriangleWords, texel), t1 = texelFetch(bvhTriangleWords, texel + 1);
-    vec3 edge2 = uintBitsToFloat(texelFetch(bvhTriangleWords, texel + 2).xyz), tuv;
-    if (!intersectTriangle(origin, direction, uintBitsToFloat(t0.xyz), uintBitsToFloat(t1.xyz), edge2, tMin, hit.t,
-                           tuv))
-      continue;
-    RayHit found = RayHit(tuv.x, t0.w, index, tuv.yz);
+    BvhTriangle triangle = bvhTriangle(index);
+    vec3 tuv;
+    if (!intersectTriangle(origin, direction, triangle.v0, triangle.edge1, triangle.edge2, tMin, hit.t, tuv)) continue;
+    RayHit found = RayHit(tuv.x, triangle.sceneTriangle, index, tuv.yz);
 #if LGH_BVH_ALPHA_MASKED
-    if ((t1.w & kBvhTriangleAlphaMasked) != 0u) {
+    if ((triangle.flags & kBvhTriangleAlphaMasked) != 0u) {
       candidate = found;
       return kBvhLeafMasked;
     }

@@ -8,7 +8,7 @@
 
 struct HitSurface {
   vec3 position;
-  vec3 normal;   // geometric, unit, facing the incoming ray
+  vec3 normal;  // geometric, unit, facing the incoming ray
   vec3 albedo;
   vec3 emission;
 };
@@ -19,9 +19,8 @@ HitSurface hitSurface(vec3 origin, vec3 direction, RayHit hit) {
   SurfacePoint p = surfacePoint(hit.sceneTriangle, hit.barycentrics);
   s.albedo = surfaceAlbedo(p);
   s.emission = surfaceEmission(p);
-  vec3 v0, edge1, edge2;
-  bvhTriangleGeometry(hit.bvhTriangle, v0, edge1, edge2);
-  vec3 n = cross(edge1, edge2);
+  BvhTriangle triangle = bvhTriangle(hit.bvhTriangle);
+  vec3 n = cross(triangle.edge1, triangle.edge2);
   float len = length(n);
   s.normal = len > 0.0 ? n / len : -direction;
   if (dot(s.normal, direction) > 0.0) s.normal = -s.normal;

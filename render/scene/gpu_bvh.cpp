@@ -24,13 +24,11 @@ GpuBvh::GpuBvh(const Bvh& bvh)
       triangles_(gl::Buffer::fromVector({passes::kScene, "BVH triangles"}, bvh.triangles, 0)),
       nodeFloats_(nodes_, GL_RGBA32F),
       nodeWords_(nodes_, GL_RGBA32UI),
-      triangleFloats_(triangles_, GL_RGBA32F),
       triangleWords_(triangles_, GL_RGBA32UI) {}
 
 void GpuBvh::bind() const {
   nodeFloats_.bindTexture(LGH_TEXTURE_BVH_NODE_FLOATS);
   nodeWords_.bindTexture(LGH_TEXTURE_BVH_NODE_WORDS);
-  triangleFloats_.bindTexture(LGH_TEXTURE_BVH_TRIANGLE_FLOATS);
   triangleWords_.bindTexture(LGH_TEXTURE_BVH_TRIANGLE_WORDS);
 }
 
