@@ -1,7 +1,10 @@
 #version 450 core
-// One shadow ray per selected light per pixel (docs/design.md §5): from the pixel's surface to the light,
-// any-hit through the scene BVH. A selected grid light is reached through one of its input lights,
-// drawn by its share of the grid light's importance (shadow_targets.comp), or, as in the paper,
+#extension GL_ARB_shader_ballot : enable
+#extension GL_ARB_gpu_shader_int64 : enable
+// One shadow ray per selected light per pixel (docs/design.md §5), from the pixel's surface to the light:
+// this shader weighs each slot and queues its ray, shadow_trace.comp traces the queue (any-hit through
+// the scene BVH) and shadow_ratio.comp sums each pixel's visible weights. A selected grid light is
+// reached through one of its input lights, drawn by its share of the grid light's importance (shadow_targets.comp), or, as in the paper,
 // through its centre jittered by the cluster's spread (when no targets were drawn).
 // The light pass drew each slot's light l with probability c'_l / F' (c'_l: its selection importance,
 // F': the pixel's total, shadowTotals). Sample j is weighed by w_j = t_l / c'_l, t_l what l adds here
@@ -15,7 +18,9 @@
 //   F' mean(w)   the unshadowed one, sum_i a_i G_i, which the LGH's irradiance (luminance C) approximates;
 // the light pass adds what those lights add, U (one drawn light each, light_volume.frag), so that
 //   T = F' mean(w) + U estimates the whole unshadowed sum.
-// Writes the raw visibility ratio r = sum w V / sum w (red), the variance of T (green) and the ratio's
+// Writes each slot's weight w (0 for an empty slot; shadow_trace.comp zeroes it where the ray is blocked)
+// and queues the rays; its image holds sum w (red, which shadow_ratio.comp makes the raw visibility
+// ratio r = sum w V / sum w), the variance of T (green) and the ratio's
 // weight T (blue): the samples' estimate of what the input lights add here, on the scale of
 // the light pass's irradiance, by which the filter and the accumulation weigh the ratio; and, as a second
 // image, the luminance C of the light pass's irradiance the samples were drawn against (with n x n
@@ -28,7 +33,7 @@
 // not show (issue 28: with it, k = 16 was worse than k = 4 at 4 x 4).
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/bindings.h"
-#include "shared/bvh_traverse.glsl"
+#include "shared/bvh_types.h"
 #include "shared/color.glsl"
 #include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
@@ -39,6 +44,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/octahedral.h"
 #include "shared/ray_offset.h"
 #include "shared/sampling.glsl"
+#include "shared/shadow_ray.glsl"
 #include "shared/shadow_ray_types.h"
 
 // The input lights S0 as texels (a GpuLight is two: position and normal, intensity and flags).
@@ -57,15 +63,18 @@ layout(std430, binding = LGH_BINDING_PASS4) readonly buffer Targets { uint clust
 // What the grid lights that reach the pixel but cannot be selected there add (light_volume.frag,
 // countUnselectable; 0 unless ShadowSettings::countsUnselectable).
 layout(std430, binding = LGH_BINDING_PASS5) readonly buffer ShadowUnselectable { float shadowUnselectable[]; };
+// Each slot's weight w, at (y W + x) k + j, and the queue: its counts, then a QueuedShadowRay a texel.
+layout(std430, binding = LGH_BINDING_PASS7) writeonly buffer SlotWeights { float slotWeights[]; };
+layout(std430, binding = LGH_BINDING_PASS0) buffer QueueCounts { ShadowRayQueueCounts queued; };
+layout(rgba32ui, binding = LGH_IMAGE_SHADOW_QUEUE) uniform writeonly uimageBuffer queuedRays;
 layout(rgba32f,
-       binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D ratioOut;  // r: visibility ratio, g: T's variance, b: T
+       binding = LGH_IMAGE_SHADOW_RATIO) uniform writeonly image2D ratioOut;  // r: sum w, g: T's variance, b: T
 layout(r32f, binding = LGH_IMAGE_SHADOW_SAMPLED_IRRADIANCE) uniform writeonly image2D sampledIrradianceOut;  // C
 
 layout(std140, binding = LGH_UBO_PASS) uniform ShadowRays { ShadowRayUniforms rays; };
 #ifdef LGH_SHADOW_RAYS_RECORD
-// The rays traced, recorded for lgh-bench rays: slot j of pixel (x, y) at (j H + y) W + x (image order, slot
-// by slot: neighbouring rays leave neighbouring pixels, as the frame's invocations trace them); tMax 0
-// where no ray was traced.
+// The rays queued, recorded for lgh-bench rays: slot j of pixel (x, y) at (j H + y) W + x (image order, slot
+// by slot: neighbouring rays leave neighbouring pixels, as in the queue); tMax 0 where no ray was queued.
 layout(std430, binding = LGH_BINDING_PASS6) writeonly buffer RecordedRays { GpuRay recordedRays[]; };
 #endif
 
@@ -129,14 +138,92 @@ uint pickTarget(uint gridLight, uint race, vec3 x, vec3 n, uint role, float R, i
   return picked;
 }
 
+// The weight w = t_l / c'_l of the sample in slot j, selected light `id` (0: it adds nothing here), and
+// the point its ray aims at.
+float weighSlot(uint id, uint j, Surface s, uint firstRace, inout Rng rng, out vec3 target) {
+  bool gridLight = (id & kSlotS0) == 0u;
+  ShadedLight light = gridLight ? decodeGridLight(gridLights[id]) : decodeInputLight(inputLight(id & ~kSlotS0));
+  float R = levelRadius(rays.alpha, rays.topCellSize, light.level, rays.levels);
+  uint role = rays.bruteForce != 0u ? kRoleOnly : levelRole(light.level, rays.firstLevel, rays.levels);
+  target = light.position;
+  float drawnFactor = -1.0;  // < 0: no drawn targets (an S0 light, or a jittered centre)
+  if (gridLight) {
+    uint targetLight = rays.races > 0u ? pickTarget(id, (firstRace + j) % rays.races, s.position, s.normal, role, R,
+                                                    rng, drawnFactor)
+                                       : kNoLight;
+    if (targetLight != kNoLight) {
+      target = inputLight(targetLight).position;
+    } else {
+      drawnFactor = -1.0;
+      vec3 sigma = sqrt(max(gridLights[id].variance, vec3(0.0)));
+      vec3 jitter = vec3(raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)));
+      target = light.position + (rays.spread / kRaisedCosineStd) * sigma * jitter;
+    }
+  }
+  // The light's selection importance c'_l, as the light pass computed it (light_volume.frag).
+  float d = distance(light.position, s.position);
+  float blend = blendWeight(role, d, R);
+  LightSelection lit = lightSelection(light, s.position, s.normal, d, blend, gridLight, rays.clampDistance,
+                                      rays.defensive, uniformSelection());
+  // What it adds here: the selection drew grid light g in proportion to c'_g, but what g's input
+  // lights add is a_g sum_i share_i B_l(|x - p_i|) G_i(x) (blend a_g sum_i share_i G_i(x) without
+  // blendTargets), estimated by drawnFactor. Weighing the sample by their quotient makes the weighted
+  // mean of the visibilities converge to the exact ratio sum_i a_i G_i V_i / sum_i a_i G_i instead of
+  // one weighted by the centres.
+  float added = rays.weighTargets != 0u && drawnFactor >= 0.0
+                    ? (blendTargets() ? 1.0 : blend) * luminance(light.intensity) * drawnFactor
+                    : luminance(lit.irradiance);
+  return lit.importance > 0.0 ? added / lit.importance : 0.0;
+}
+
+// A place in the queue for this invocation's ray, and the trace's groups counted as the queue grows past
+// each multiple of kShadowTraceGroupSize. Where the driver has ballots, one atomic serves every
+// invocation of the subgroup that queues a ray now, in lane order (llvmpipe does an atomic one lane at a
+// time; a GPU serialises atomics on one address); else one atomic a ray.
+uint queueIndex() {
+#if defined(GL_ARB_shader_ballot) && defined(GL_ARB_gpu_shader_int64)
+  uint64_t queuing = ballotARB(true);
+  uvec2 all = unpackUint2x32(queuing), below = unpackUint2x32(queuing & gl_SubGroupLtMaskARB);
+  uint count = bitCount(all.x) + bitCount(all.y), rank = bitCount(below.x) + bitCount(below.y);
+  uint first = 0u;
+  if (rank == 0u) {
+    first = atomicAdd(queued.rays, count);
+    uint groups = (first + count + kShadowTraceGroupSize - 1u) / kShadowTraceGroupSize -
+                  (first + kShadowTraceGroupSize - 1u) / kShadowTraceGroupSize;
+    if (groups > 0u) atomicAdd(queued.groupsX, groups);
+  }
+  return readFirstInvocationARB(first) + rank;
+#else
+  uint index = atomicAdd(queued.rays, 1u);
+  if (index % kShadowTraceGroupSize == 0u) atomicAdd(queued.groupsX, 1u);
+  return index;
+#endif
+}
+
+// Queues slot `slot`'s ray from `origin` to `target` (shadowRay, which shadow_trace.comp makes again); a
+// ray of length 0 is not blocked and not queued.
+void queueRay(vec3 origin, vec3 target, uint slot) {
+  GpuRay ray = shadowRay(origin, target);
+  if (!(ray.tMax > 0.0)) return;
+  uint index = queueIndex();
+  imageStore(queuedRays, 1 + int(index), uvec4(floatBitsToUint(target), slot));
+#ifdef LGH_SHADOW_RAYS_RECORD
+  uint pixel = slot / rays.samples, j = slot % rays.samples;
+  uint x = pixel % uint(frame.resolution.x), y = pixel / uint(frame.resolution.x);
+  recordedRays[(j * uint(frame.resolution.y) + y) * uint(frame.resolution.x) + x] = ray;
+#endif
+}
+
 void main() {
-  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-  if (any(greaterThanEqual(pixel, ivec2(frame.resolution.xy)))) return;
+  // The rows of this batch (ShadowRayPass queues the rays of as many rows as its queue holds, in turn).
+  ivec2 pixel = ivec2(gl_GlobalInvocationID.xy) + ivec2(0, rays.firstRow);
+  if (pixel.x >= int(frame.resolution.x) || pixel.y >= int(rays.endRow)) return;
   Surface s = loadSurface(pixel);
   uvec2 p = uvec2(pixel);
   uvec2 tiled = (p % rays.tilesPerAxis) * uvec2(rays.tileWidth, rays.tileHeight) + p / rays.tilesPerAxis;
-  uint pixelIndex = tiled.y * (rays.tilesPerAxis * rays.tileWidth) + tiled.x;
-  float visible = 0.0, weights = 0.0, squares = 0.0, estimate = 0.0, variance = 0.0;
+  uint pixelIndex = tiled.y * (rays.tilesPerAxis * rays.tileWidth) + tiled.x;  // in the light pass's layout
+  uint firstSlot = (p.y * uint(frame.resolution.x) + p.x) * rays.samples;
+  float weights = 0.0, squares = 0.0, estimate = 0.0, variance = 0.0;
   if (s.valid) {
     vec3 origin = offsetRayOrigin(s.position, s.normal);
     Rng rng = makeRng(pixelIndex, rays.frameSeed ^ 0x5bd1e995u);
@@ -145,62 +232,15 @@ void main() {
     uint firstRace = rays.races > 0u ? pcgHash(pixelIndex ^ rays.frameSeed) % rays.races : 0u;
     for (uint j = 0u; j < rays.samples; ++j) {
       uint id = shadowSlots[pixelIndex * rays.samples + j];
-      if (id == kNoLight) continue;
-      bool gridLight = (id & kSlotS0) == 0u;
-      ShadedLight light = gridLight ? decodeGridLight(gridLights[id]) : decodeInputLight(inputLight(id & ~kSlotS0));
-      float R = levelRadius(rays.alpha, rays.topCellSize, light.level, rays.levels);
-      uint role = rays.bruteForce != 0u ? kRoleOnly : levelRole(light.level, rays.firstLevel, rays.levels);
-      vec3 target = light.position;
-      float drawnFactor = -1.0;  // < 0: no drawn targets (an S0 light, or a jittered centre)
-      if (gridLight) {
-        uint targetLight = rays.races > 0u ? pickTarget(id, (firstRace + j) % rays.races, s.position, s.normal, role,
-                                                        R, rng, drawnFactor)
-                                           : kNoLight;
-        if (targetLight != kNoLight) {
-          target = inputLight(targetLight).position;
-        } else {
-          drawnFactor = -1.0;
-          vec3 sigma = sqrt(max(gridLights[id].variance, vec3(0.0)));
-          vec3 jitter = vec3(raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)), raisedCosine(nextFloat(rng)));
-          target = light.position + (rays.spread / kRaisedCosineStd) * sigma * jitter;
-        }
-      }
-      // The light's selection importance c'_l, as the light pass computed it (light_volume.frag).
-      float d = distance(light.position, s.position);
-      float blend = blendWeight(role, d, R);
-      LightSelection lit = lightSelection(light, s.position, s.normal, d, blend, gridLight, rays.clampDistance,
-                                          rays.defensive, uniformSelection());
-      // What it adds here: the selection drew grid light g in proportion to c'_g, but what g's input
-      // lights add is a_g sum_i share_i B_l(|x - p_i|) G_i(x) (blend a_g sum_i share_i G_i(x) without
-      // blendTargets), estimated by drawnFactor. Weighing the sample by their quotient makes the weighted
-      // mean of the visibilities converge to the exact ratio sum_i a_i G_i V_i / sum_i a_i G_i instead of
-      // one weighted by the centres.
-      float added = rays.weighTargets != 0u && drawnFactor >= 0.0
-                        ? (blendTargets() ? 1.0 : blend) * luminance(light.intensity) * drawnFactor
-                        : luminance(lit.irradiance);
-      float weight = lit.importance > 0.0 ? added / lit.importance : 0.0;
+      vec3 target;
+      float weight = id != kNoLight ? weighSlot(id, j, s, firstRace, rng, target) : 0.0;
       weights += weight;
       squares += weight * weight;
-      // The sample adds nothing here (no drawn light reaches x): a ray would decide nothing.
-      if (weight == 0.0) continue;
-      vec3 toLight = target - origin;
-      float rayLength = length(toLight);
-      // Stop short of the light by a relative margin: VPLs sit on surfaces, and so may a cluster's centre.
-#ifdef LGH_SHADOW_RAYS_UNTRACED
-      bool blocked = false;  // the pass timed without its rays (ShadowRayOptions::trace)
-#else
-      bool blocked = rayLength > 0.0 && traceAnyHit(origin, toLight / rayLength, 0.0, rayLength * (1.0 - 1e-3));
-#endif
-#ifdef LGH_SHADOW_RAYS_RECORD
-      if (rayLength > 0.0)
-        recordedRays[(j * uint(frame.resolution.y) + p.y) * uint(frame.resolution.x) + p.x] =
-            GpuRay(origin, 0.0, toLight / rayLength, rayLength * (1.0 - 1e-3));
-#endif
-      visible += weight * (blocked ? 0.0 : 1.0);
+      slotWeights[firstSlot + j] = weight;
+      // A sample that adds nothing here (no drawn light reaches x) needs no ray: it decides nothing.
+      if (weight != 0.0) queueRay(origin, target, firstSlot + j);
     }
   }
-  // No selected light (nothing lights this pixel through the LGH): visibility 1 multiplies zero anyway.
-  float ratio = weights > 0.0 ? visible / weights : 1.0;
   // b: the estimate's own weight T = F' mean(w) = C D (C: the light pass's irradiance here, in its layout), by which the filter
   // and the accumulation weigh this pixel's ratio (a ratio of sums over pixels and frames converges where
   // a mean of per-pixel ratios would keep each one's bias), and whose sums over sums of C may correct the
@@ -221,6 +261,6 @@ void main() {
     float deviations = scale * scale * max(squares - k * meanWeight * meanWeight, 0.0);  // sum (T_j - T)^2
     variance = (rays.sampleSpread * rays.sampleSpread * lgh * lgh + deviations) / (k * k);
   }
-  imageStore(ratioOut, pixel, vec4(ratio, variance, estimate, 1.0));
+  imageStore(ratioOut, pixel, vec4(weights, variance, estimate, 1.0));
   imageStore(sampledIrradianceOut, pixel, vec4(s.valid ? lgh : 0.0));
 }

@@ -77,6 +77,9 @@ struct ShadowSettings {
   float spread = 1.0f;  // jitter of a cluster's shadow-ray target, in its standard deviations
   // false: the rays are not traced (none blocked), so that the pass's other work can be timed alone.
   bool trace = true;
+  // The most shadow rays queued at once (GPU memory, 16 bytes a ray; at least a row's): the rows whose
+  // rays fit are queued and traced in turn.
+  int queuedRays = 1 << 20;
 };
 
 // The a-trous filter over the shadow ratio (ShadowFilterPass).
@@ -292,6 +295,10 @@ void visitSettings(Settings& s, Visitor&& visit) {
   visit(shadows.trace,
         SettingInfo{"shadow-trace", "trace the shadow rays (false: none blocked; times the pass's other work)"}
             .ablation());
+  visit(shadows.queuedRays,
+        SettingInfo{"shadow-queued-rays", "most shadow rays queued at once (16 bytes each; rows traced in turn)", 1,
+                    65535 * 64}
+            .keepingHistory());
   auto& filter = s.filter;
   visit(
       filter.passes,

@@ -39,6 +39,7 @@
 #define LGH_TEXTURE_SHADOW_IRRADIANCE 4      // shadow rays: the light pass's irradiance, in its layout
 #define LGH_TEXTURE_SHADOW_LIGHT_FLOATS 5    // shadow rays: the input lights S0 as texels, floats
 #define LGH_TEXTURE_SHADOW_LIGHT_WORDS 6     // shadow rays: the input lights S0 as texels, integers
+#define LGH_TEXTURE_SHADOW_QUEUE 7           // shadow rays, traced: the queue as texels
 #define LGH_TEXTURE_FILTER_SIGNAL 4          // a-trous: the signal being filtered
 #define LGH_TEXTURE_FILTER_SECOND 5          // a-trous: the sampled irradiance, or the raw ratio
 #define LGH_TEXTURE_COMPOSITE_DIRECT 4
@@ -70,6 +71,7 @@
 #define LGH_IMAGE_BRUTE_FORCE_IRRADIANCE 0     // compute brute force
 #define LGH_IMAGE_SHADOW_RATIO 0               // shadow rays
 #define LGH_IMAGE_SHADOW_SAMPLED_IRRADIANCE 1  // shadow rays: the irradiance T is compared with
+#define LGH_IMAGE_SHADOW_QUEUE 2               // shadow rays: the queued rays, written as texels
 #define LGH_IMAGE_FILTER_OUT 0                 // a-trous
 #define LGH_IMAGE_RTSLC_SHADOWED 0             // lightcuts: the shadowed irradiance estimate
 #define LGH_IMAGE_RTSLC_UNSHADOWED 1           // lightcuts, ratio form: the same samples unshadowed

@@ -59,6 +59,10 @@ class BufferTexture {
   // GL_MAX_TEXTURE_BUFFER_SIZE.
   void attach(const Buffer& buffer, size_t bytes = 0);
   void bindTexture(GLuint unit) const { glBindTextureUnit(unit, handle_.id()); }
+  // As an image (imageBuffer) a shader writes or reads texel by texel.
+  void bindImage(GLuint unit, GLenum access) const {
+    glBindImageTexture(unit, handle_.id(), 0, GL_FALSE, 0, access, format_);
+  }
 
  private:
   Handle<DeleteTexture> handle_;

@@ -107,6 +107,7 @@ ShadowRayOptions LghIndirect::shadowRayOptions(const IndirectFrame& frame, const
   ShadowRayOptions o;
   o.shadows = lightPass.shadows;
   o.trace = frame.settings.shadows.trace;
+  o.queuedRays = size_t(frame.settings.shadows.queuedRays);
   o.alpha = lightPass.pass.alpha;
   o.startLevel = lightPass.pass.startLevel;
   o.bruteForce = lightPass.pass.bruteForce;

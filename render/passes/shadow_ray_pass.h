@@ -2,7 +2,10 @@
 // Shadow rays (docs/design.md §5), after the light pass has picked k lights per pixel: one ray per filled
 // slot from the pixel's surface to the light (to one of a grid light's drawn input lights, or to its
 // jittered centre), any-hit through the scene's BVH, each weighed by what its light adds over the
-// importance the light pass selected it by (glsl/shadow_rays.comp).
+// importance the light pass selected it by. Three steps: glsl/shadow_rays.comp weighs the slots and
+// queues their rays, shadow_trace.comp traces the queue (only rays, so that no SIMD lane idles on an
+// empty slot), shadow_ratio.comp sums each pixel's visible weights. The queue holds a batch of rows'
+// rays at a time (ShadowRayOptions::queuedRays), so its memory does not grow with the image.
 //   in:  ShadowRayInputs: the scene's BVH, the G-buffer, the input lights S0 and the hierarchy, this
 //        frame's drawn targets, the shadow slots and the light pass's irradiance (both in its layout)
 //   out: ShadowRayTargets, full resolution: the raw visibility ratio (RGBA32F: r the ratio sum w V / sum w,
@@ -46,6 +49,9 @@ struct ShadowRayOptions {
   float clampDistance = 0.0f;  // d_c, resolved
   unsigned frameSeed = 0;
   bool trace = true;  // false: no ray is traced (none blocked), to time the pass's other work alone
+  // The most rays queued at once (at least a row's, W x k): the rows whose rays fit are queued and
+  // traced in turn.
+  size_t queuedRays = size_t(1) << 20;
 };
 
 struct ShadowRayTargets {
@@ -64,9 +70,13 @@ class ShadowRayPass {
   void execute(const ShadowRayInputs& in, const ShadowRayOptions& options, const ShadowRayTargets& out);
 
  private:
-  TracingProgram program_;
-  TracingProgram untraced_;   // options.trace false: the same pass with every ray visible
-  TracingProgram recording_;  // out.recordedRays
+  gl::Program sampling_;   // shadow_rays.comp: weighs the slots, queues the rays
+  gl::Program recording_;  // the same, recording the rays (out.recordedRays)
+  TracingProgram trace_;   // shadow_trace.comp
+  gl::Program ratio_;      // shadow_ratio.comp
+  gl::Buffer queue_;       // gpu::ShadowRayQueueCounts, then the queued gpu::QueuedShadowRay
+  gl::BufferTexture queueTexels_;
+  gl::Buffer slotWeights_;  // float per slot, at (y W + x) k + j
   // The input lights read as texels (a slot's resampling reads eight: through SSBOs, llvmpipe's scalar
   // word loads made them most of the pass's work besides the rays).
   gl::BufferTexture lightFloats_, lightWords_;

@@ -18,6 +18,7 @@
 #include "shared/bvh_types.h"
 #include "shared/light_pass_types.h"
 #include "shared/ray_offset.h"
+#include "shared/ray_triangle.h"
 
 namespace lgh::test {
 namespace {
@@ -243,6 +244,30 @@ TEST_F(ShadowTest, ImportanceSelectionBeatsUniform) {
   EXPECT_LT(e["importance k=4 filtered"], e["importance k=4 raw"]);
 }
 
+// A small Cornell box frame whose shadow rays the tests below record: 64 x 36, 2,000 VPLs, k = 4, the
+// ratio AOV the raw ratio.
+RenderSettings recordedFrameSettings() {
+  RenderSettings settings;
+  settings.image.width = 64;
+  settings.image.height = 36;
+  settings.inputLights.vpls = 2000;
+  settings.inputLights.bounces = 1;
+  settings.shadows.samples = 4;
+  settings.filter.passes = 0;
+  return settings;
+}
+
+// Renders a frame, recording its shadow rays: slot j of pixel (x, y) at (j H + y) W + x, tMax 0 where
+// the slot needed none.
+std::vector<gpu::GpuRay> renderRecordingRays(Renderer& renderer, const CameraView& view, const RenderSettings& s) {
+  gl::Buffer recorded({"test", "recorded rays"},
+                      size_t(s.image.width * s.image.height * s.shadows.samples) * sizeof(gpu::GpuRay));
+  renderer.recordShadowRays(&recorded);
+  renderer.render(view);
+  renderer.recordShadowRays(nullptr);
+  return recorded.downloadAll<gpu::GpuRay>();
+}
+
 // The pass's two bench modes (lgh-bench frame, rays): recorded, its rays are the ones it traced, one per
 // slot of a valid pixel at (j H + y) W + x, leaving that pixel's surface (offset along its normal) and
 // stopping short of a light; untraced (ShadowRayOptions::trace false), no ray is blocked, so the raw ratio
@@ -250,21 +275,11 @@ TEST_F(ShadowTest, ImportanceSelectionBeatsUniform) {
 TEST_F(ShadowTest, RecordedRaysAreTheTracedOnesAndUntracedOnesBlockNothing) {
   const Scene scene = loadScene(sourceDir() / "data/cornell_box.gltf");
   const SceneGpu gpu(scene);
-  RenderSettings settings;
-  settings.image.width = 64;
-  settings.image.height = 36;
-  settings.inputLights.vpls = 2000;
-  settings.inputLights.bounces = 1;
-  settings.shadows.samples = 4;
-  settings.filter.passes = 0;  // the ratio AOV is the raw ratio
+  RenderSettings settings = recordedFrameSettings();
   Renderer renderer(gpu, settings);
   const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
   const int w = settings.image.width, h = settings.image.height, k = settings.shadows.samples;
-  gl::Buffer recorded({"test", "recorded rays"}, size_t(w * h * k) * sizeof(gpu::GpuRay));
-  renderer.recordShadowRays(&recorded);
-  renderer.render(view);
-  renderer.recordShadowRays(nullptr);
-  const std::vector<gpu::GpuRay> rays = recorded.downloadAll<gpu::GpuRay>();
+  const std::vector<gpu::GpuRay> rays = renderRecordingRays(renderer, view, settings);
   const ImageRGBA position = renderer.readImage(Aov::Position), normal = renderer.readImage(Aov::Normal);
   size_t traced = 0, fromTheirPixel = 0;
   for (int j = 0; j < k; ++j)
@@ -295,6 +310,87 @@ TEST_F(ShadowTest, RecordedRaysAreTheTracedOnesAndUntracedOnesBlockNothing) {
   std::printf("  mean raw ratio traced %.4f, untraced %.6f\n", tracedRatio, untracedRatio);
   EXPECT_LT(tracedRatio, 0.99);
   EXPECT_DOUBLE_EQ(untracedRatio, 1.0);
+}
+
+// Whether `ray` is blocked by any of `triangles` (brute force, any hit), and whether rounding could
+// decide it: a triangle grown or shrunk by 1e-4 of its edges, or the ray's end moved by 1e-4 of its
+// length, answers otherwise.
+struct CpuOcclusion {
+  bool blocked = false;
+  bool ambiguous = false;
+};
+CpuOcclusion occlusion(const std::vector<gpu::BvhTriangle>& triangles, const gpu::GpuRay& ray) {
+  CpuOcclusion result;
+  constexpr float e = 1e-4f;
+  for (const gpu::BvhTriangle& t : triangles) {
+    glm::vec3 hit;
+    const bool exact =
+        gpu::intersectTriangle(ray.origin, ray.direction, t.v0, t.edge1, t.edge2, ray.tMin, ray.tMax, hit);
+    const glm::vec3 grow = e * (t.edge1 + t.edge2);
+    const bool grown = gpu::intersectTriangle(ray.origin, ray.direction, t.v0 - grow, t.edge1 * (1 + 3 * e),
+                                              t.edge2 * (1 + 3 * e), ray.tMin, ray.tMax * (1 + e), hit);
+    const bool shrunk = gpu::intersectTriangle(ray.origin, ray.direction, t.v0 + grow, t.edge1 * (1 - 3 * e),
+                                               t.edge2 * (1 - 3 * e), ray.tMin + e * ray.tMax, ray.tMax * (1 - e), hit);
+    result.blocked |= exact;
+    result.ambiguous |= grown != shrunk;
+  }
+  return result;
+}
+
+// The queue routes each ray's answer to its own slot: a pixel whose recorded rays are all unblocked (as
+// a CPU test of every triangle finds them) has ratio 1 exactly, one whose rays are all blocked 0, one
+// with both strictly between (every queued ray's weight is positive); and queued a row at a time (the
+// fewest rays a batch holds: 36 batches) the pass gives the same image, bit for bit, as in one batch.
+TEST_F(ShadowTest, EachPixelsRatioIsWhatItsRaysSee) {
+  const Scene scene = loadScene(sourceDir() / "data/cornell_box.gltf");
+  const SceneGpu gpu(scene);
+  RenderSettings settings = recordedFrameSettings();
+  Renderer renderer(gpu, settings);
+  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
+  const int w = settings.image.width, h = settings.image.height, k = settings.shadows.samples;
+  const std::vector<gpu::GpuRay> rays = renderRecordingRays(renderer, view, settings);
+  const ImageRGBA ratio = renderer.readImage(Aov::Ratio);
+  int all = 0, none = 0, mixed = 0, skipped = 0, wrong = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      int traced = 0, blocked = 0;
+      bool ambiguous = false;
+      for (int j = 0; j < k; ++j) {
+        const gpu::GpuRay& r = rays[size_t((j * h + y) * w + x)];
+        if (!(r.tMax > r.tMin)) continue;
+        const CpuOcclusion o = occlusion(gpu.bvh().triangles, r);
+        ++traced;
+        blocked += o.blocked;
+        ambiguous |= o.ambiguous;
+      }
+      const float r = ratio.at(x, h - 1 - y).r;
+      if (ambiguous) {
+        ++skipped;
+      } else if (blocked == 0) {
+        ++all;
+        wrong += r != 1.0f;
+      } else if (blocked == traced) {
+        ++none;
+        wrong += r != 0.0f;
+      } else {
+        ++mixed;
+        wrong += !(r > 0.0f && r < 1.0f);
+      }
+    }
+  std::printf("  pixels: %d all visible, %d none, %d mixed, %d near an edge (skipped); %d wrong\n", all, none, mixed,
+              skipped, wrong);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GE(none, 10);
+  EXPECT_GT(mixed, w * h / 20);
+  EXPECT_LT(skipped, w * h / 20);
+
+  settings.shadows.queuedRays = 1;  // a row (W x k rays) a batch; the same frame, so the same random numbers
+  Renderer rowByRowRenderer(gpu, settings);
+  rowByRowRenderer.render(view);
+  const ImageRGBA rowByRow = rowByRowRenderer.readImage(Aov::Ratio);
+  size_t differ = 0;
+  for (size_t i = 0; i < ratio.pixels.size(); ++i) differ += ratio.pixels[i] != rowByRow.pixels[i];
+  EXPECT_EQ(differ, 0u);
 }
 
 }  // namespace
