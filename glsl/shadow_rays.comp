@@ -4,8 +4,9 @@
 // One shadow ray per selected light per pixel (docs/design.md §5), from the pixel's surface to the light:
 // this shader weighs each slot and queues its ray, shadow_trace.comp traces the queue (any-hit through
 // the scene BVH) and shadow_ratio.comp sums each pixel's visible weights. A selected grid light is
-// reached through one of its input lights, drawn by its share of the grid light's importance (shadow_targets.comp), or, as in the paper,
-// through its centre jittered by the cluster's spread (when no targets were drawn).
+// reached through one of its input lights, drawn by its share of the grid light's importance
+// (shadow_targets.comp), or, as in the paper, through its centre jittered by the cluster's spread (when
+// no targets were drawn).
 // The light pass drew each slot's light l with probability c'_l / F' (c'_l: its selection importance,
 // F': the pixel's total, shadowTotals). Sample j is weighed by w_j = t_l / c'_l, t_l what l adds here
 // unshadowed: for a grid light with drawn targets (weighTargets), what its input lights add, estimated
@@ -20,8 +21,7 @@
 //   T = F' mean(w) + U estimates the whole unshadowed sum.
 // Writes each slot's weight w (0 for an empty slot; shadow_trace.comp zeroes it where the ray is blocked)
 // and queues the rays; its image holds sum w (red, which shadow_ratio.comp makes the raw visibility
-// ratio r = sum w V / sum w), the variance of T (green) and the ratio's
-// weight T (blue): the samples' estimate of what the input lights add here, on the scale of
+// ratio r = sum w V / sum w), the variance of T (green) and the ratio's weight T (blue): the samples' estimate of what the input lights add here, on the scale of
 // the light pass's irradiance, by which the filter and the accumulation weigh the ratio; and, as a second
 // image, the luminance C of the light pass's irradiance the samples were drawn against (with n x n
 // interleaving the pixel's own tile's, n^2-scaled and unresolved: its lights are the ones T estimates).
@@ -208,9 +208,8 @@ void queueRay(vec3 origin, vec3 target, uint slot) {
   uint index = queueIndex();
   imageStore(queuedRays, 1 + int(index), uvec4(floatBitsToUint(target), slot));
 #ifdef LGH_SHADOW_RAYS_RECORD
-  uint pixel = slot / rays.samples, j = slot % rays.samples;
-  uint x = pixel % uint(frame.resolution.x), y = pixel / uint(frame.resolution.x);
-  recordedRays[(j * uint(frame.resolution.y) + y) * uint(frame.resolution.x) + x] = ray;
+  uvec2 p = shadowSlotPixel(slot, rays.samples);
+  recordedRays[((slot % rays.samples) * uint(frame.resolution.y) + p.y) * uint(frame.resolution.x) + p.x] = ray;
 #endif
 }
 

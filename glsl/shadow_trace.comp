@@ -8,7 +8,6 @@
 layout(local_size_x = 64) in;  // kShadowTraceGroupSize
 #include "shared/bindings.h"
 #include "shared/bvh_traverse.glsl"
-#include "shared/frame.glsl"
 #include "shared/gbuffer.glsl"
 #include "shared/ray_offset.h"
 #include "shared/shadow_ray.glsl"
@@ -23,8 +22,7 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= texelFetch(queue, 0).x) return;
   uvec4 queued = texelFetch(queue, 1 + int(i));  // target, slot
-  uint pixel = queued.w / rays.samples;
-  Surface s = loadSurface(ivec2(pixel % uint(frame.resolution.x), pixel / uint(frame.resolution.x)));
+  Surface s = loadSurface(ivec2(shadowSlotPixel(queued.w, rays.samples)));
   GpuRay ray = shadowRay(offsetRayOrigin(s.position, s.normal), uintBitsToFloat(queued.xyz));
   if (traceAnyHit(ray.origin, ray.direction, ray.tMin, ray.tMax)) slotWeights[queued.w] = 0.0;
 }

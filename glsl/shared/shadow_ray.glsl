@@ -5,6 +5,13 @@
 #ifndef LGH_SHADOW_RAY_GLSL
 #define LGH_SHADOW_RAY_GLSL
 #include "shared/bvh_types.h"
+#include "shared/frame.glsl"
+
+// The pixel of slot `slot` = (y W + x) k + j, as the pass numbers the slots of its queue and weights.
+uvec2 shadowSlotPixel(uint slot, uint samples) {
+  uint pixel = slot / samples, width = uint(frame.resolution.x);
+  return uvec2(pixel % width, pixel / width);
+}
 
 GpuRay shadowRay(vec3 origin, vec3 target) {
   vec3 toLight = target - origin;

@@ -51,15 +51,15 @@ void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& o
   u.frameSeed = options.frameSeed;
   // The rows whose rays the queue holds at once (every slot may need a ray), queued and traced in turn.
   const size_t width = size_t(in.gbuffer.width), height = size_t(in.gbuffer.height), k = size_t(in.slots.k);
+  if (width == 0 || height == 0) return;
   const size_t rowRays = std::max<size_t>(width * k, 1);
-  const size_t rowsPerBatch = std::clamp<size_t>(options.queuedRays / rowRays, 1, height ? height : 1);
+  const size_t rowsPerBatch = std::clamp<size_t>(options.queuedRays / rowRays, 1, height);
   std::vector<gpu::ShadowRayUniforms> batches;
   for (size_t row = 0; row < height; row += rowsPerBatch) {
     u.firstRow = unsigned(row);
     u.endRow = unsigned(std::min(height, row + rowsPerBatch));
     batches.push_back(u);
   }
-  if (batches.empty()) batches.push_back(u);  // the ratio step reads the block
   uniforms_.upload(batches);
   const size_t capacity = rowsPerBatch * rowRays;
   if (capacity > size_t(65535) * gpu::kShadowTraceGroupSize)
@@ -101,7 +101,7 @@ void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& o
   in.scene.bindForCompute();
   glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, queue_.id());
   const gpu::ShadowRayQueueCounts empty{0u, 0u, 1u, 1u};
-  for (size_t b = 0; b < batches.size() && height > 0; ++b) {
+  for (size_t b = 0; b < batches.size(); ++b) {
     queue_.update(&empty, sizeof(empty));
     uniforms_.bind(b, LGH_UBO_PASS);
     sampling->dispatch2D(int(width), int(batches[b].endRow - batches[b].firstRow), {8, 8});

@@ -244,42 +244,45 @@ TEST_F(ShadowTest, ImportanceSelectionBeatsUniform) {
   EXPECT_LT(e["importance k=4 filtered"], e["importance k=4 raw"]);
 }
 
-// A small Cornell box frame whose shadow rays the tests below record: 64 x 36, 2,000 VPLs, k = 4, the
-// ratio AOV the raw ratio.
-RenderSettings recordedFrameSettings() {
-  RenderSettings settings;
-  settings.image.width = 64;
-  settings.image.height = 36;
-  settings.inputLights.vpls = 2000;
-  settings.inputLights.bounces = 1;
-  settings.shadows.samples = 4;
-  settings.filter.passes = 0;
-  return settings;
-}
+// A small Cornell box frame whose shadow rays the tests below record (64 x 36, 2,000 VPLs, k = 4, the
+// ratio AOV the raw ratio): slot j of pixel (x, y) at (j H + y) W + x, tMax 0 where the slot needed none.
+struct RecordedFrame {
+  static RenderSettings defaults() {
+    RenderSettings settings;
+    settings.image.width = 64;
+    settings.image.height = 36;
+    settings.inputLights.vpls = 2000;
+    settings.inputLights.bounces = 1;
+    settings.shadows.samples = 4;
+    settings.filter.passes = 0;
+    return settings;
+  }
+  std::vector<gpu::GpuRay> render() {
+    gl::Buffer recorded({"test", "recorded rays"}, size_t(w * h * k) * sizeof(gpu::GpuRay));
+    renderer.recordShadowRays(&recorded);
+    renderer.render(view);
+    renderer.recordShadowRays(nullptr);
+    return recorded.downloadAll<gpu::GpuRay>();
+  }
 
-// Renders a frame, recording its shadow rays: slot j of pixel (x, y) at (j H + y) W + x, tMax 0 where
-// the slot needed none.
-std::vector<gpu::GpuRay> renderRecordingRays(Renderer& renderer, const CameraView& view, const RenderSettings& s) {
-  gl::Buffer recorded({"test", "recorded rays"},
-                      size_t(s.image.width * s.image.height * s.shadows.samples) * sizeof(gpu::GpuRay));
-  renderer.recordShadowRays(&recorded);
-  renderer.render(view);
-  renderer.recordShadowRays(nullptr);
-  return recorded.downloadAll<gpu::GpuRay>();
-}
+  const Scene scene = loadScene(sourceDir() / "data/cornell_box.gltf");
+  const SceneGpu gpu{scene};
+  RenderSettings settings = defaults();
+  Renderer renderer{gpu, settings};
+  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
+  const int w = settings.image.width, h = settings.image.height, k = settings.shadows.samples;
+  const std::vector<gpu::GpuRay> rays = render();
+};
 
 // The pass's two bench modes (lgh-bench frame, rays): recorded, its rays are the ones it traced, one per
 // slot of a valid pixel at (j H + y) W + x, leaving that pixel's surface (offset along its normal) and
 // stopping short of a light; untraced (ShadowRayOptions::trace false), no ray is blocked, so the raw ratio
 // is 1 everywhere, where the traced frame's is not.
 TEST_F(ShadowTest, RecordedRaysAreTheTracedOnesAndUntracedOnesBlockNothing) {
-  const Scene scene = loadScene(sourceDir() / "data/cornell_box.gltf");
-  const SceneGpu gpu(scene);
-  RenderSettings settings = recordedFrameSettings();
-  Renderer renderer(gpu, settings);
-  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
-  const int w = settings.image.width, h = settings.image.height, k = settings.shadows.samples;
-  const std::vector<gpu::GpuRay> rays = renderRecordingRays(renderer, view, settings);
+  RecordedFrame frame;
+  const int w = frame.w, h = frame.h, k = frame.k;
+  const std::vector<gpu::GpuRay>& rays = frame.rays;
+  Renderer& renderer = frame.renderer;
   const ImageRGBA position = renderer.readImage(Aov::Position), normal = renderer.readImage(Aov::Normal);
   size_t traced = 0, fromTheirPixel = 0;
   for (int j = 0; j < k; ++j)
@@ -303,9 +306,10 @@ TEST_F(ShadowTest, RecordedRaysAreTheTracedOnesAndUntracedOnesBlockNothing) {
     return sum / double(ratio.pixels.size());
   };
   const double tracedRatio = meanRatio();
+  RenderSettings settings = frame.settings;
   settings.shadows.trace = false;
   renderer.setSettings(settings);
-  renderer.render(view);
+  renderer.render(frame.view);
   const double untracedRatio = meanRatio();
   std::printf("  mean raw ratio traced %.4f, untraced %.6f\n", tracedRatio, untracedRatio);
   EXPECT_LT(tracedRatio, 0.99);
@@ -342,13 +346,10 @@ CpuOcclusion occlusion(const std::vector<gpu::BvhTriangle>& triangles, const gpu
 // with both strictly between (every queued ray's weight is positive); and queued a row at a time (the
 // fewest rays a batch holds: 36 batches) the pass gives the same image, bit for bit, as in one batch.
 TEST_F(ShadowTest, EachPixelsRatioIsWhatItsRaysSee) {
-  const Scene scene = loadScene(sourceDir() / "data/cornell_box.gltf");
-  const SceneGpu gpu(scene);
-  RenderSettings settings = recordedFrameSettings();
-  Renderer renderer(gpu, settings);
-  const CameraView view = makeCameraView(resolveCamera(scene, settings), settings.image.width, settings.image.height);
-  const int w = settings.image.width, h = settings.image.height, k = settings.shadows.samples;
-  const std::vector<gpu::GpuRay> rays = renderRecordingRays(renderer, view, settings);
+  RecordedFrame frame;
+  const int w = frame.w, h = frame.h, k = frame.k;
+  const std::vector<gpu::GpuRay>& rays = frame.rays;
+  Renderer& renderer = frame.renderer;
   const ImageRGBA ratio = renderer.readImage(Aov::Ratio);
   int all = 0, none = 0, mixed = 0, skipped = 0, wrong = 0;
   for (int y = 0; y < h; ++y)
@@ -358,7 +359,7 @@ TEST_F(ShadowTest, EachPixelsRatioIsWhatItsRaysSee) {
       for (int j = 0; j < k; ++j) {
         const gpu::GpuRay& r = rays[size_t((j * h + y) * w + x)];
         if (!(r.tMax > r.tMin)) continue;
-        const CpuOcclusion o = occlusion(gpu.bvh().triangles, r);
+        const CpuOcclusion o = occlusion(frame.gpu.bvh().triangles, r);
         ++traced;
         blocked += o.blocked;
         ambiguous |= o.ambiguous;
@@ -384,9 +385,10 @@ TEST_F(ShadowTest, EachPixelsRatioIsWhatItsRaysSee) {
   EXPECT_GT(mixed, w * h / 20);
   EXPECT_LT(skipped, w * h / 20);
 
+  RenderSettings settings = frame.settings;
   settings.shadows.queuedRays = 1;  // a row (W x k rays) a batch; the same frame, so the same random numbers
-  Renderer rowByRowRenderer(gpu, settings);
-  rowByRowRenderer.render(view);
+  Renderer rowByRowRenderer(frame.gpu, settings);
+  rowByRowRenderer.render(frame.view);
   const ImageRGBA rowByRow = rowByRowRenderer.readImage(Aov::Ratio);
   size_t differ = 0;
   for (size_t i = 0; i < ratio.pixels.size(); ++i) differ += ratio.pixels[i] != rowByRow.pixels[i];
