@@ -47,13 +47,13 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/shadow_ray.glsl"
 #include "shared/shadow_ray_types.h"
 
-// The input lights S0 as texels (a GpuLight is two: position and normal, intensity and flags).
-layout(binding = LGH_TEXTURE_SHADOW_LIGHT_FLOATS) uniform samplerBuffer inputLightFloats;
-layout(binding = LGH_TEXTURE_SHADOW_LIGHT_WORDS) uniform usamplerBuffer inputLightWords;
+// The input lights S0 as integer texels, a GpuLight two (position and normal, intensity and flags): its
+// floats' bits cast back exactly, so that a light is two fetches, not two of each view.
+layout(binding = LGH_TEXTURE_SHADOW_INPUT_LIGHTS) uniform usamplerBuffer inputLightTexels;
 GpuLight inputLight(uint i) {
   int texel = 2 * int(i);
-  vec4 a = texelFetch(inputLightFloats, texel), b = texelFetch(inputLightFloats, texel + 1);
-  return GpuLight(a.xyz, texelFetch(inputLightWords, texel).w, b.xyz, texelFetch(inputLightWords, texel + 1).w);
+  uvec4 a = texelFetch(inputLightTexels, texel), b = texelFetch(inputLightTexels, texel + 1);
+  return GpuLight(uintBitsToFloat(a.xyz), a.w, uintBitsToFloat(b.xyz), b.w);
 }
 layout(std430, binding = LGH_BINDING_PASS1) readonly buffer ShadowTotals { float shadowTotals[]; };  // F'
 layout(binding = LGH_TEXTURE_SHADOW_IRRADIANCE) uniform sampler2D lightPassIrradiance;  // the slots' layout

@@ -37,8 +37,7 @@
 #define LGH_TEXTURE_TILED_IRRADIANCE 4       // interleave resolve
 #define LGH_TEXTURE_TILED_FRAGMENT_COUNTS 5  // interleave resolve
 #define LGH_TEXTURE_SHADOW_IRRADIANCE 4      // shadow rays: the light pass's irradiance, in its layout
-#define LGH_TEXTURE_SHADOW_LIGHT_FLOATS 5    // shadow rays: the input lights S0 as texels, floats
-#define LGH_TEXTURE_SHADOW_LIGHT_WORDS 6     // shadow rays: the input lights S0 as texels, integers
+#define LGH_TEXTURE_SHADOW_INPUT_LIGHTS 5    // shadow rays: the input lights S0 as integer texels
 #define LGH_TEXTURE_SHADOW_QUEUE 7           // shadow rays, traced: the queue as texels
 #define LGH_TEXTURE_FILTER_SIGNAL 4          // a-trous: the signal being filtered
 #define LGH_TEXTURE_FILTER_SECOND 5          // a-trous: the sampled irradiance, or the raw ratio

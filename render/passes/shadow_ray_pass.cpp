@@ -18,8 +18,7 @@ ShadowRayPass::ShadowRayPass()
       trace_("shadow_trace.comp"),
       ratio_(gl::Program::compute("shadow_ratio.comp")),
       queueTexels_(GL_RGBA32UI),
-      lightFloats_(GL_RGBA32F),
-      lightWords_(GL_RGBA32UI),
+      inputLightTexels_(GL_RGBA32UI),
       uniforms_(passes::kShadowRays, sizeof(gpu::ShadowRayUniforms)) {}
 
 void ShadowRayPass::release() {
@@ -73,10 +72,8 @@ void ShadowRayPass::execute(const ShadowRayInputs& in, const ShadowRayOptions& o
   queueTexels_.bindImage(LGH_IMAGE_SHADOW_QUEUE, GL_WRITE_ONLY);
 
   in.gbuffer.bindForReading();
-  lightFloats_.attach(in.inputLights, in.inputLightCount * sizeof(gpu::GpuLight));
-  lightWords_.attach(in.inputLights, in.inputLightCount * sizeof(gpu::GpuLight));
-  lightFloats_.bindTexture(LGH_TEXTURE_SHADOW_LIGHT_FLOATS);
-  lightWords_.bindTexture(LGH_TEXTURE_SHADOW_LIGHT_WORDS);
+  inputLightTexels_.attach(in.inputLights, in.inputLightCount * sizeof(gpu::GpuLight));
+  inputLightTexels_.bindTexture(LGH_TEXTURE_SHADOW_INPUT_LIGHTS);
   in.slots.totals.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS1);
   in.slots.slots.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS2);
   in.slots.unselectable.bindBase(GL_SHADER_STORAGE_BUFFER, LGH_BINDING_PASS5);

@@ -77,9 +77,9 @@ class ShadowRayPass {
   gl::Buffer queue_;       // gpu::ShadowRayQueueCounts, then the queued gpu::QueuedShadowRay
   gl::BufferTexture queueTexels_;
   gl::Buffer slotWeights_;  // float per slot, at (y W + x) k + j
-  // The input lights read as texels (a slot's resampling reads eight: through SSBOs, llvmpipe's scalar
-  // word loads made them most of the pass's work besides the rays).
-  gl::BufferTexture lightFloats_, lightWords_;
+  // The input lights read as integer texels (a slot's resampling reads eight: through SSBOs, llvmpipe's
+  // scalar word loads made them most of the pass's work besides the rays).
+  gl::BufferTexture inputLightTexels_;
   gl::UniformBlocks uniforms_;  // one gpu::ShadowRayUniforms
 };
 
