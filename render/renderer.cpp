@@ -174,14 +174,14 @@ FrameStats Renderer::render(const CameraView& view) {
     // S0 (VPLs, emitter samples, many point lights) and the structure the method draws from it (the
     // hierarchy, the light tree), when out of date.
     stats.lightsRebuilt = updateLights(frame);
-    bool moved = false;
-    stats.accumulatedFrames = updateAccumulation(stats.lightsRebuilt, view, moved);
+    const HistoryUpdate history = updateAccumulation(stats.lightsRebuilt, view);
+    stats.accumulatedFrames = history.stillFrames;
     // This frame's raw estimate (render/indirect/): the LGH's light volumes with k shadow samples picked per
     // pixel and their shadow rays, or the lightcuts' n shadowed light samples per pixel.
     stats.lights = method_->estimate(frame);
     // Temporal accumulation: the raw estimate added to the history reprojected from the last frame; the
     // accumulated estimate replaces it for the filter and the composite.
-    if (accumulating()) timed(passes::kAccumulation, [&] { accumulate(frame, view, moved); });
+    if (accumulating()) timed(passes::kAccumulation, [&] { accumulate(frame, view, history.lightsMoved); });
     // The estimate denoised: the LGH's ratio filter, or the lightcuts' variance-guided one.
     indirect = method_->filter(frame);
   }
@@ -208,10 +208,10 @@ FrameStats Renderer::render(const CameraView& view) {
   return stats;
 }
 
-void Renderer::accumulate(const IndirectFrame& frame, const CameraView& view, bool moved) {
+void Renderer::accumulate(const IndirectFrame& frame, const CameraView& view, bool lightsMoved) {
   const AccumulationSource source = method_->accumulation(frame);
   accumulationPass_.execute({gbuffer_, view, source.rawIrradiance, source.layout, source.shadowSamples,
-                             kInterleaveResolve, moved, source.wholeIrradiance},
+                             kInterleaveResolve, lightsMoved, source.wholeIrradiance},
                             settings_.accumulation, source.targets);
 }
 
@@ -220,11 +220,11 @@ void Renderer::restartAccumulation() {
   accumulatedFrames_ = 0;
 }
 
-int Renderer::updateAccumulation(bool lightsRebuilt, const CameraView& view, bool& moved) {
-  moved = false;
+Renderer::HistoryUpdate Renderer::updateAccumulation(bool lightsRebuilt, const CameraView& view) {
+  HistoryUpdate update;
   if (!accumulating()) {
     restartAccumulation();
-    return 0;
+    return update;
   }
   std::string key = estimateKey(settings_);
   // The history's sums belong to the settings they were made with. Lights rebuilt with the same settings
@@ -233,7 +233,7 @@ int Renderer::updateAccumulation(bool lightsRebuilt, const CameraView& view, boo
   if (key != accumulationKey_ || (lightsRebuilt && settings_.accumulation.motion == HistoryMotion::Restart)) {
     restartAccumulation();
   } else if (lightsRebuilt) {
-    moved = true;
+    update.lightsMoved = true;
     accumulatedFrames_ = 0;  // the count is of still frames
   }
   accumulationKey_ = std::move(key);
@@ -242,7 +242,8 @@ int Renderer::updateAccumulation(bool lightsRebuilt, const CameraView& view, boo
   if (accumulatedFrames_ > 0 && !sameView(view, accumulationView_)) accumulatedFrames_ = 0;
   accumulationView_ = view;
   accumulatedFrames_ = std::min(accumulatedFrames_ + 1, settings_.accumulation.maxFrames);
-  return accumulatedFrames_;
+  update.stillFrames = accumulatedFrames_;
+  return update;
 }
 
 bool Renderer::updateLights(const IndirectFrame& frame) {

@@ -94,12 +94,16 @@ class Renderer {
   IndirectFrame indirectFrame();
   // S0 when its settings or the lights changed, and the method's structure over it when out of date.
   bool updateLights(const IndirectFrame& frame);
+  // What the history is to do with this frame (updateAccumulation).
+  struct HistoryUpdate {
+    int stillFrames = 0;       // the frames it holds while the camera and the lights are still, this one included
+    bool lightsMoved = false;  // rebuilt lights with the same settings: each pixel's test keeps or drops its history
+  };
   // Restarts the history when the estimate's settings changed (or the lights were rebuilt and motion
-  // restarts it), says whether the lights moved (`moved`), and counts the frames it holds while the camera
-  // and the lights are still.
-  int updateAccumulation(bool lightsRebuilt, const CameraView& view, bool& moved);
+  // restarts it), says whether the lights moved, and counts the still frames.
+  HistoryUpdate updateAccumulation(bool lightsRebuilt, const CameraView& view);
   // The method's raw estimate summed into its history, the accumulated estimate in its place.
-  void accumulate(const IndirectFrame& frame, const CameraView& view, bool moved);
+  void accumulate(const IndirectFrame& frame, const CameraView& view, bool lightsMoved);
   // Runs `pass` inside a profiler scope called `name` (a passes:: constant).
   template <typename Pass>
   void timed(const char* name, Pass&& pass) {
