@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "bench/common/light_source.h"
 #include "bench/common/ranks.h"
 #include "bench/common/table.h"
 #include "bench/engine/motion_error.h"
@@ -114,6 +115,84 @@ void writeSideBySide(const std::filesystem::path& file, const reference::Referen
   writeImage(file, both, exposure, ToneMap::Aces);
 }
 
+// The scene as the sequence moves it, on every rank alike: the animation at each frame's time and the
+// scripted steps (pure functions of the frame), and the occluders the reference traces.
+class SequenceScene {
+ public:
+  SequenceScene(Scene& scene, const MotionBenchOptions& options, const std::filesystem::path& path)
+      : scene_(scene),
+        options_(options),
+        motion_(parseScriptedMotion(options.sunStep, options.pointStep, options.orbitStep)),
+        startLights_(scene.lights) {
+    if (scene.animation.empty() && motion_.empty())
+      throw std::invalid_argument(path.string() +
+                                  " has no animation: give --sun-step, --point-step or --orbit-step to move it");
+    start_ = options.startTime >= 0 ? options.startTime : scene.animation.start;
+  }
+  double time(int frame) const { return start_ + double(frame) / options_.fps; }
+  // Poses frame `frame`: what moved, and the camera it is seen through.
+  PoseChange pose(int frame, Camera& camera) {
+    PoseChange change = poseScene(scene_, time(frame));
+    camera = resolveCamera(scene_, options_.render.settings);
+    change.merge(applyScriptedMotion(motion_, frame, startLights_, scene_, camera));
+    if (!occlusion_ || change.geometry)
+      occlusion_ = std::make_unique<reference::OcclusionScene>(scene_.positions, scene_.indices);
+    return change;
+  }
+  // The occluders of the frame posed last; the same on every rank, or the run ends (checkSameOccluders).
+  const reference::OcclusionScene& occlusion() const { return *occlusion_; }
+  void checkSameOccluders(const Ranks& ranks, int frame) const {
+    std::string root = reference::hex64(occlusion_->contentHash());
+    const std::string mine = root;
+    ranks.broadcast(root);
+    if (mine != root)
+      ranks.abort("lgh-bench motion: frame " + std::to_string(frame) + ": this rank's occluders (" + mine +
+                  ") are not rank 0's (" + root + ")");
+  }
+
+ private:
+  Scene& scene_;
+  const MotionBenchOptions& options_;
+  ScriptedMotion motion_;
+  std::vector<PunctualLight> startLights_;
+  double start_ = 0;
+  std::unique_ptr<reference::OcclusionScene> occlusion_;
+};
+
+std::string ranksLine(const Ranks& ranks) {
+  return ranks.distributed() ? std::to_string(ranks.size()) + " ranks (the references shared)" : "one rank";
+}
+
+ReferenceRequest referenceRequest(const MotionBenchOptions& options) {
+  ReferenceRequest request;
+  request.pixels = options.referencePixels;
+  request.run.cacheDir =
+      options.referenceCache.empty() ? defaultReferenceCache() : std::filesystem::path(options.referenceCache);
+  request.run.progress = false;
+  return request;
+}
+
+// Ranks other than 0 render nothing (no GL): each moves its own copy of the scene as rank 0 does and
+// computes its share of every frame's reference tiles (obtainReference is collective; rank 0 sends the
+// frame's G-buffer and lights).
+void shareTheReferences(const MotionBenchOptions& options, const Ranks& ranks) {
+  std::string why;
+  const std::filesystem::path path = chooseRenderScene(options.render.scene, why);
+  Scene scene = loadScene(path);
+  SequenceScene sequence(scene, options, path);
+  const SceneSpec spec{path, options.render.settings.image.camera, path.stem().string()};
+  ReferenceRequest request = referenceRequest(options);
+  for (int f = 0; f < options.frames; ++f) {
+    Camera camera;
+    sequence.pose(f, camera);
+    sequence.checkSameOccluders(ranks, f);
+    ReferenceInfo info;
+    request.run.label = "reference frame " + std::to_string(f);
+    obtainReference(ranks, sequence.occlusion(), spec, options.render.settings, reference::ReferenceInput{}, request,
+                    info);
+  }
+}
+
 }  // namespace
 
 CLI::App* addMotionCommand(CLI::App& app, MotionBenchOptions& options) {
@@ -149,31 +228,27 @@ CLI::App* addMotionCommand(CLI::App& app, MotionBenchOptions& options) {
 }
 
 int runMotionBench(const MotionBenchOptions& options) {
+  // Rank 0 renders the sequence and measures it; with more ranks (mpiexec, srun) the others share each
+  // frame's reference.
   const Ranks& ranks = Ranks::world();
-  if (ranks.distributed()) throw std::invalid_argument("lgh-bench motion runs on one rank (its frames are in order)");
+  if (!ranks.root()) {
+    shareTheReferences(options, ranks);
+    return 0;
+  }
   RenderBench bench(options.render);
-  Scene& scene = bench.movingScene();
   SceneGpu& gpu = bench.sceneGpu();
-  const ScriptedMotion motion = parseScriptedMotion(options.sunStep, options.pointStep, options.orbitStep);
-  if (scene.animation.empty() && motion.empty())
-    throw std::invalid_argument(bench.scenePath().string() +
-                                " has no animation: give --sun-step, --point-step or --orbit-step to move it");
-  const double start = options.startTime >= 0 ? options.startTime : scene.animation.start;
+  SequenceScene sequence(bench.movingScene(), options, bench.scenePath());
   std::vector<Configuration> configs = configurations(options);
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (const Configuration& c : configs) renderers.push_back(std::make_unique<Renderer>(gpu, c.settings));
   std::vector<Series> series(configs.size());
 
   const SceneSpec spec{bench.scenePath(), options.render.settings.image.camera, bench.scenePath().stem().string()};
-  ReferenceRequest request;
-  request.pixels = options.referencePixels;
-  request.run.cacheDir =
-      options.referenceCache.empty() ? defaultReferenceCache() : std::filesystem::path(options.referenceCache);
-  request.run.progress = false;
-  std::printf("lgh-bench motion: %s, %d frames at %g fps from %g s, %d x %d, %d VPLs (budget); %s\n", spec.name.c_str(),
-              options.frames, options.fps, start, options.render.settings.image.width,
+  ReferenceRequest request = referenceRequest(options);
+  std::printf("lgh-bench motion: %s, %d frames at %g fps from %g s, %d x %d, %d VPLs (budget); %s; %s\n",
+              spec.name.c_str(), options.frames, options.fps, sequence.time(0), options.render.settings.image.width,
               options.render.settings.image.height, options.render.settings.inputLights.vpls,
-              bench.context().description().c_str());
+              bench.context().description().c_str(), ranksLine(ranks).c_str());
   std::ofstream csv;
   if (!options.csvPath.empty()) {
     const std::filesystem::path folder = std::filesystem::path(options.csvPath).parent_path();
@@ -185,16 +260,11 @@ int runMotionBench(const MotionBenchOptions& options) {
   }
   if (!options.imageDir.empty()) std::filesystem::create_directories(options.imageDir);
 
-  const std::vector<PunctualLight> startLights = scene.lights;
-  std::unique_ptr<reference::OcclusionScene> occlusion;
   for (int f = 0; f < options.frames; ++f) {
-    const double time = start + double(f) / options.fps;
-    PoseChange change = poseScene(scene, time);
-    Camera camera = resolveCamera(scene, options.render.settings);
-    change.merge(applyScriptedMotion(motion, f, startLights, scene, camera));
-    gpu.follow(change);
-    if (!occlusion || change.geometry)
-      occlusion = std::make_unique<reference::OcclusionScene>(scene.positions, scene.indices);
+    const double time = sequence.time(f);
+    Camera camera;
+    gpu.follow(sequence.pose(f, camera));
+    sequence.checkSameOccluders(ranks, f);
     const CameraView view =
         makeCameraView(camera, options.render.settings.image.width, options.render.settings.image.height);
     std::vector<FrameStats> stats(configs.size());
@@ -216,7 +286,7 @@ int runMotionBench(const MotionBenchOptions& options) {
         first.inputLights().lights.download<gpu::GpuLight>(first.inputLights().count);
     ReferenceInfo info;
     request.run.label = "reference frame " + std::to_string(f);
-    const reference::ReferenceImage ref = obtainReference(ranks, *occlusion, spec, configs[0].settings,
+    const reference::ReferenceImage ref = obtainReference(ranks, sequence.occlusion(), spec, configs[0].settings,
                                                           referenceInput(first, fromGpuLights(lights)), request, info);
     std::vector<double> reference(ref.pixels.size()), unshadowed(ref.pixels.size());
     double norm = 0;

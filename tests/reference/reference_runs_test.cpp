@@ -1,7 +1,7 @@
-// lgh-bench reference and sweep as processes (docs/design.md §13): under mpiexec -n 2 they give what one
-// process gives, a run killed after some tiles and started again computes only the missing tiles, a
-// corrupt or truncated tile file is computed again, and a failing rank ends the run naming the rank and
-// the tile. The MPI cases skip, saying why, where lgh-bench was built without MPI.
+// lgh-bench reference, sweep and motion as processes (docs/design.md §13): under mpiexec -n 2 they give
+// what one process gives, a run killed after some tiles and started again computes only the missing
+// tiles, a corrupt or truncated tile file is computed again, and a failing rank ends the run naming the
+// rank and the tile. The MPI cases skip, saying why, where lgh-bench was built without MPI.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -209,18 +209,31 @@ TEST(ReferenceRuns, FailingRankEndsEveryRankNamingTheRankAndTile) {
   EXPECT_NE(r.output.find("rank 1 of 2: reference: tile 3 (x 48-63, y 0-15) failed"), std::string::npos) << r.output;
 }
 
-// The CSV of lgh-bench sweep --preset smoke without its timing columns (wall times and the machine's load).
+// A CSV line's cells ("a, b" quoted is one cell).
+std::vector<std::string> csvCells(const std::string& line) {
+  std::vector<std::string> cells(1);
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"')
+      quoted = !quoted;
+    else if (c == ',' && !quoted)
+      cells.emplace_back();
+    else
+      cells.back() += c;
+  }
+  return cells;
+}
+
+// A CSV of lgh-bench (sweep, motion) without its timing columns (wall times and the machine's load).
 std::vector<std::vector<std::string>> untimedCsv(const fs::path& path) {
   std::ifstream in(path);
   std::vector<std::vector<std::string>> rows;
   std::vector<bool> timed;
   for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::stringstream fields(line);
-    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+    const std::vector<std::string> cells = csvCells(line);
     if (timed.empty())
       for (const std::string& name : cells)
-        timed.push_back(name.find("_ms") != std::string::npos || name == "others_cpu");
+        timed.push_back(name == "ms" || name.find("_ms") != std::string::npos || name == "others_cpu");
     std::vector<std::string> kept;
     for (size_t i = 0; i < cells.size(); ++i)
       if (i >= timed.size() || !timed[i]) kept.push_back(cells[i]);
@@ -248,6 +261,29 @@ TEST(ReferenceRuns, SweepOnTwoRanksWritesTheOneProcessCsv) {
   for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << "row " << i;
   // The ranks shared the reference: one file each, the same.
   expectSameReference(cachedReference(dir.path() / "cache2"), cachedReference(dir.path() / "cache1"));
+}
+
+// lgh-bench motion on two ranks: rank 0 renders the sequence, both compute each frame's reference (6 tiles
+// a frame, 3 each, rank 1 from its own copy of the moving scene), and the errors are the one process's.
+TEST(ReferenceRuns, MotionOnTwoRanksWritesTheOneProcessCsv) {
+  REQUIRE_MPI();
+  TempDir dir;
+  const std::string motion = std::string(LGH_BENCH_EXE) +
+                             " motion --frames 3 --fps 4 --width 96 --height 54 --vpls 1000 --lightcut-samples 0"
+                             " --reference-pixels 1";
+  const Process one = run(
+      motion + " --reference-cache " + (dir.path() / "cache1").string() + " --csv " + (dir.path() / "one.csv").string(),
+      dir.path() / "one.txt");
+  ASSERT_EQ(one.exitCode, 0) << one.output;
+  const Process two = run(mpiexec(2) + motion + " --reference-cache " + (dir.path() / "cache2").string() + " --csv " +
+                              (dir.path() / "two.csv").string(),
+                          dir.path() / "two.txt");
+  ASSERT_EQ(two.exitCode, 0) << two.output;
+  EXPECT_NE(two.output.find("2 ranks (the references shared)"), std::string::npos) << two.output;
+  const auto a = untimedCsv(dir.path() / "one.csv"), b = untimedCsv(dir.path() / "two.csv");
+  ASSERT_EQ(a.size(), 1u + 3u * 4u);  // the header, 3 frames of 4 configurations
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) EXPECT_EQ(a[i], b[i]) << "row " << i;
 }
 
 }  // namespace
