@@ -6,6 +6,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 #include "shared/bindings.h"
 #include "shared/frame.glsl"
+#include "shared/shadow_ray.glsl"
 #include "shared/shadow_ray_types.h"
 
 layout(std430, binding = LGH_BINDING_PASS7) readonly buffer SlotWeights { float slotWeights[]; };  // (y W + x) k + j
@@ -15,7 +16,7 @@ layout(std140, binding = LGH_UBO_PASS) uniform ShadowRays { ShadowRayUniforms ra
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, ivec2(frame.resolution.xy)))) return;
-  uint first = (uint(pixel.y) * uint(frame.resolution.x) + uint(pixel.x)) * rays.samples;
+  uint first = shadowFirstSlot(uvec2(pixel), rays.samples);
   float visible = 0.0;
   for (uint j = 0u; j < rays.samples; ++j) visible += slotWeights[first + j];
   vec4 v = imageLoad(ratio, pixel);

@@ -221,7 +221,7 @@ void main() {
   uvec2 p = uvec2(pixel);
   uvec2 tiled = (p % rays.tilesPerAxis) * uvec2(rays.tileWidth, rays.tileHeight) + p / rays.tilesPerAxis;
   uint pixelIndex = tiled.y * (rays.tilesPerAxis * rays.tileWidth) + tiled.x;  // in the light pass's layout
-  uint firstSlot = (p.y * uint(frame.resolution.x) + p.x) * rays.samples;
+  uint firstSlot = shadowFirstSlot(p, rays.samples);
   float weights = 0.0, squares = 0.0, estimate = 0.0, variance = 0.0;
   if (s.valid) {
     vec3 origin = offsetRayOrigin(s.position, s.normal);

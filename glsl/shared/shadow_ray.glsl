@@ -7,7 +7,9 @@
 #include "shared/bvh_types.h"
 #include "shared/frame.glsl"
 
-// The pixel of slot `slot` = (y W + x) k + j, as the pass numbers the slots of its queue and weights.
+// The pass numbers the slots of its queue and weights (y W + x) k + j: pixel (x, y)'s first slot, and
+// the pixel of slot `slot`.
+uint shadowFirstSlot(uvec2 pixel, uint samples) { return (pixel.y * uint(frame.resolution.x) + pixel.x) * samples; }
 uvec2 shadowSlotPixel(uint slot, uint samples) {
   uint pixel = slot / samples, width = uint(frame.resolution.x);
   return uvec2(pixel % width, pixel / width);
